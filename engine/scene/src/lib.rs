@@ -1,0 +1,33 @@
+//! The scene the renderer draws, and the loaders that build it from files.
+//!
+//! Everything here is plain CPU data in SI units (metres, radians, watts per steradian),
+//! +Y up, right-handed, as glTF. Geometry is baked to world space at load time: levels are
+//! static, and a flat list of triangles is what both the renderer and collision want.
+//!
+//! Entry points: [`load_level`] (a level folder or a bare scene file), [`load_scene_file`]
+//! (by extension), [`load_gltf`], [`load_obj`], [`load_texture`]. Every failure is a
+//! [`LoadError`] naming the file and the problem on one line; no input makes them panic.
+
+mod error;
+mod geometry;
+mod gltf_accessor;
+mod gltf_container;
+mod gltf_loader;
+mod image_loader;
+mod level;
+mod level_toml;
+pub mod limits;
+mod obj_loader;
+mod sources;
+mod types;
+
+pub use error::{LoadError, LoadErrorKind};
+pub use gltf_loader::load_gltf;
+pub use image_loader::{load_texture, texture_from_image};
+pub use level::{
+    load_level, load_scene_file, DistributionImage, HeadlampProfile, IntensityDistribution, Level, Spawn,
+    DEFAULT_EYE_HEIGHT,
+};
+pub use obj_loader::load_obj;
+pub use sources::Fnv1a;
+pub use types::*;

@@ -1,0 +1,96 @@
+//! Every file a load touches goes through [`Sources`]: it reads the bytes, refuses paths that
+//! leave the level folder, and folds each file into the level's content hash.
+//!
+//! Routing all reads through one place is what makes `Level::content_hash` trustworthy (no file
+//! can be loaded without being hashed) and the folder confinement impossible to forget.
+
+use std::path::{Component, Path, PathBuf};
+
+use crate::error::{LoadError, LoadErrorKind};
+use crate::limits::MAX_FILE_BYTES;
+
+/// 64-bit FNV-1a: tiny, dependency-free and stable across platforms and Rust versions, which
+/// is what a hash stored in replay files needs (std's `DefaultHasher` promises none of that).
+#[derive(Clone, Copy, Debug)]
+pub struct Fnv1a(u64);
+
+impl Default for Fnv1a {
+    fn default() -> Self {
+        Self(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl Fnv1a {
+    pub fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 ^= u64::from(b);
+            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    pub fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+/// The files a load has read, in order, and their running hash.
+#[derive(Debug, Default)]
+pub(crate) struct Sources {
+    /// Canonical level folder; when set, every referenced path must resolve inside it.
+    root: Option<PathBuf>,
+    files: Vec<PathBuf>,
+    hash: Fnv1a,
+}
+
+impl Sources {
+    pub fn new(root: Option<PathBuf>) -> Self {
+        Self { root, ..Self::default() }
+    }
+
+    /// Reads a whole file and adds it to the hash. Each file is hashed as its length (u64 LE)
+    /// then its bytes, so that moving bytes from one file to the next changes the hash; a file
+    /// read twice is hashed once.
+    pub fn read(&mut self, path: &Path) -> Result<Vec<u8>, LoadError> {
+        let meta = std::fs::metadata(path).map_err(|e| LoadError::io(path, &e))?;
+        if meta.is_dir() {
+            return Err(LoadError::new(path, LoadErrorKind::Io("is a directory, expected a file".into())));
+        }
+        if meta.len() > MAX_FILE_BYTES {
+            return Err(LoadError::too_large(path, format!("file is {} bytes (limit {MAX_FILE_BYTES})", meta.len())));
+        }
+        let bytes = std::fs::read(path).map_err(|e| LoadError::io(path, &e))?;
+        if !self.files.iter().any(|f| f == path) {
+            self.hash.write(&(bytes.len() as u64).to_le_bytes());
+            self.hash.write(&bytes);
+            self.files.push(path.to_path_buf());
+        }
+        Ok(bytes)
+    }
+
+    /// Resolves a path written inside `referrer` (relative to folder `base`) and, inside a
+    /// level, checks that it stays in the level folder. Symlinks are followed before the check
+    /// (canonicalisation), so a link pointing outside is refused too.
+    pub fn resolve(&self, referrer: &Path, base: &Path, written: &str) -> Result<PathBuf, LoadError> {
+        if written.trim().is_empty() {
+            return Err(LoadError::new(referrer, LoadErrorKind::Io("empty file path".into())));
+        }
+        let rel = Path::new(written);
+        let Some(root) = &self.root else {
+            // A bare scene file is trusted like any file the user opens: absolute paths allowed.
+            return Ok(base.join(rel));
+        };
+        let escapes = || LoadError::new(referrer, LoadErrorKind::EscapesFolder(written.to_string()));
+        if rel.components().any(|c| matches!(c, Component::Prefix(_) | Component::RootDir)) {
+            return Err(escapes());
+        }
+        let joined = base.join(rel);
+        let canonical = joined.canonicalize().map_err(|e| LoadError::io(&joined, &e))?;
+        if !canonical.starts_with(root) {
+            return Err(escapes());
+        }
+        Ok(joined)
+    }
+
+    pub fn hash(&self) -> u64 {
+        self.hash.finish()
+    }
+}
