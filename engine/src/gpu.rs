@@ -1,0 +1,102 @@
+//! The GPU context: one instance/adapter/device/queue, shared by the window and headless paths.
+
+use std::fmt;
+
+/// Installed by `.ci/run`; printed whenever no adapter is found so a test failure says what to do.
+pub const LAVAPIPE_HINT: &str = "install Mesa's software Vulkan driver (lavapipe): \
+`sudo apt-get install mesa-vulkan-drivers libvulkan1` (Debian/Ubuntu), then retry";
+
+#[derive(Debug)]
+pub enum GpuError {
+    NoAdapter(String),
+    Device(String),
+}
+
+impl fmt::Display for GpuError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            GpuError::NoAdapter(why) => write!(f, "no GPU adapter found ({why}); {LAVAPIPE_HINT}"),
+            GpuError::Device(why) => write!(f, "could not open the GPU device: {why}"),
+        }
+    }
+}
+
+impl std::error::Error for GpuError {}
+
+pub struct Gpu {
+    pub instance: wgpu::Instance,
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    /// Whether the device can write GPU timestamps (used by `bench`).
+    pub timestamps: bool,
+}
+
+impl Gpu {
+    /// A device with no window. `WGPU_ADAPTER_NAME` / `WGPU_BACKEND` pick a specific adapter.
+    pub fn headless() -> Result<Gpu, GpuError> {
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = pollster::block_on(Self::pick_adapter(&instance, None))?;
+        Self::open(instance, adapter)
+    }
+
+    /// A device able to present to `surface` (created from `instance`).
+    pub fn for_surface(instance: wgpu::Instance, surface: &wgpu::Surface<'_>) -> Result<Gpu, GpuError> {
+        let adapter = pollster::block_on(Self::pick_adapter(&instance, Some(surface)))?;
+        Self::open(instance, adapter)
+    }
+
+    async fn pick_adapter(
+        instance: &wgpu::Instance,
+        surface: Option<&wgpu::Surface<'_>>,
+    ) -> Result<wgpu::Adapter, GpuError> {
+        if let Ok(name) = std::env::var("WGPU_ADAPTER_NAME") {
+            let wanted = name.to_lowercase();
+            for adapter in instance.enumerate_adapters(wgpu::Backends::all()).await {
+                if adapter.get_info().name.to_lowercase().contains(&wanted)
+                    && surface.is_none_or(|s| adapter.is_surface_supported(s))
+                {
+                    return Ok(adapter);
+                }
+            }
+            return Err(GpuError::NoAdapter(format!("no adapter named like WGPU_ADAPTER_NAME={name}")));
+        }
+        instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: false,
+                compatible_surface: surface,
+                apply_limit_buckets: false,
+            })
+            .await
+            .map_err(|e| GpuError::NoAdapter(e.to_string()))
+    }
+
+    fn open(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Gpu, GpuError> {
+        let wanted = wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
+        let features = adapter.features() & wanted;
+        let info = adapter.get_info();
+        log::info!("GPU adapter: {} ({:?}, {:?})", info.name, info.backend, info.device_type);
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("headlamp"),
+            required_features: features,
+            // The G-buffer needs more colour bytes per sample than WebGPU's baseline; every
+            // Vulkan/Metal/D3D12 adapter offers it, so take what the adapter has.
+            required_limits: adapter.limits(),
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| GpuError::Device(e.to_string()))?;
+        Ok(Gpu { instance, adapter, device, queue, timestamps: features == wanted })
+    }
+
+    pub fn adapter_name(&self) -> String {
+        self.adapter.get_info().name
+    }
+
+    /// Blocks until all submitted work is done.
+    pub fn wait_idle(&self) {
+        let _ = self.device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None });
+    }
+}

@@ -1,0 +1,135 @@
+//! Physical GPU resources behind transient graph resources, kept across frames and resizes.
+
+use super::resource::{ResolvedDesc, ResolvedTexture};
+
+enum Physical {
+    Texture { texture: wgpu::Texture, view: wgpu::TextureView },
+    Buffer(wgpu::Buffer),
+}
+
+struct Slot {
+    key: ResolvedDesc,
+    physical: Physical,
+    /// Last schedule position using it in the current plan; None = unused by the plan.
+    busy_until: Option<usize>,
+}
+
+/// Counters for tests and the F3 overlay.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PoolStats {
+    /// Physical resources alive now.
+    pub live: usize,
+    /// GPU allocations made since the pool was created.
+    pub allocations: usize,
+}
+
+#[derive(Default)]
+pub struct ResourcePool {
+    slots: Vec<Option<Slot>>,
+    allocations: usize,
+}
+
+impl ResourcePool {
+    pub fn stats(&self) -> PoolStats {
+        PoolStats { live: self.slots.iter().flatten().count(), allocations: self.allocations }
+    }
+
+    pub(crate) fn begin_frame_plan(&mut self) {
+        for slot in self.slots.iter_mut().flatten() {
+            slot.busy_until = None;
+        }
+    }
+
+    /// A slot with this key free before `first`, else a new allocation.
+    pub(crate) fn acquire(
+        &mut self,
+        device: &wgpu::Device,
+        label: &str,
+        key: ResolvedDesc,
+        first: usize,
+        last: usize,
+    ) -> usize {
+        let free = self
+            .slots
+            .iter()
+            .position(|s| s.as_ref().is_some_and(|s| s.key == key && s.busy_until.is_none_or(|until| until < first)));
+        let index = match free {
+            Some(i) => i,
+            None => {
+                self.allocations += 1;
+                let slot = Slot { key, physical: create(device, label, key), busy_until: None };
+                match self.slots.iter().position(Option::is_none) {
+                    Some(i) => {
+                        self.slots[i] = Some(slot);
+                        i
+                    }
+                    None => {
+                        self.slots.push(Some(slot));
+                        self.slots.len() - 1
+                    }
+                }
+            }
+        };
+        self.slots[index].as_mut().expect("slot just filled").busy_until = Some(last);
+        index
+    }
+
+    /// Frees what the new plan does not use (e.g. the old size after a resize).
+    pub(crate) fn end_frame_plan(&mut self) {
+        for slot in &mut self.slots {
+            if slot.as_ref().is_some_and(|s| s.busy_until.is_none()) {
+                *slot = None;
+            }
+        }
+    }
+
+    fn slot(&self, index: usize) -> &Slot {
+        self.slots[index].as_ref().expect("render graph slot in use")
+    }
+
+    pub(crate) fn texture(&self, index: usize) -> &wgpu::Texture {
+        match &self.slot(index).physical {
+            Physical::Texture { texture, .. } => texture,
+            Physical::Buffer(_) => panic!("render graph: resource is a buffer, not a texture"),
+        }
+    }
+
+    pub(crate) fn view(&self, index: usize) -> &wgpu::TextureView {
+        match &self.slot(index).physical {
+            Physical::Texture { view, .. } => view,
+            Physical::Buffer(_) => panic!("render graph: resource is a buffer, not a texture"),
+        }
+    }
+
+    pub(crate) fn buffer(&self, index: usize) -> &wgpu::Buffer {
+        match &self.slot(index).physical {
+            Physical::Buffer(b) => b,
+            Physical::Texture { .. } => panic!("render graph: resource is a texture, not a buffer"),
+        }
+    }
+}
+
+fn create(device: &wgpu::Device, label: &str, key: ResolvedDesc) -> Physical {
+    match key {
+        ResolvedDesc::Texture(ResolvedTexture { format, width, height, usage, mip_levels }) => {
+            let texture = device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+                mip_level_count: mip_levels,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            });
+            let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+            Physical::Texture { texture, view }
+        }
+        ResolvedDesc::Buffer(desc) => Physical::Buffer(device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: desc.size,
+            usage: desc.usage,
+            mapped_at_creation: false,
+        })),
+    }
+}

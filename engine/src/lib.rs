@@ -1,0 +1,23 @@
+//! Headlamp's engine: GPU context, render graph, scene assets, deferred renderer, headless
+//! output and the window loop. It knows nothing of any game.
+
+pub mod camera;
+pub mod frame;
+pub mod globals;
+pub mod gpu;
+pub mod gpu_scene;
+pub mod graph;
+pub mod headlamp;
+pub mod headless;
+pub mod input;
+pub mod output;
+pub mod passes;
+pub mod plugin;
+pub mod renderer;
+pub mod shader;
+pub mod start_view;
+pub mod window;
+
+pub use glam;
+pub use scene;
+pub use wgpu;

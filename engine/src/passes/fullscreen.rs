@@ -1,0 +1,96 @@
+//! Shared plumbing of full-screen passes: a pipeline drawing one triangle, and bind groups of
+//! textures read with `textureLoad`.
+
+/// A bind group layout of `count` 2D float textures at bindings 0..count (unfilterable, so
+/// Rgba32Float works), optionally followed by a uniform buffer at binding `count`.
+pub fn textures_layout(device: &wgpu::Device, label: &str, count: u32, with_uniform: bool) -> wgpu::BindGroupLayout {
+    let mut entries: Vec<wgpu::BindGroupLayoutEntry> = (0..count)
+        .map(|binding| {
+            crate::globals::texture_entry(binding, wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE, false)
+        })
+        .collect();
+    if with_uniform {
+        entries.push(crate::globals::uniform_entry(count, wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE));
+    }
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries })
+}
+
+/// Binds `views` at 0..n and, if given, `uniform` at n, matching [`textures_layout`].
+pub fn bind_textures(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    views: &[&wgpu::TextureView],
+    uniform: Option<&wgpu::Buffer>,
+) -> wgpu::BindGroup {
+    let mut entries: Vec<wgpu::BindGroupEntry> = views
+        .iter()
+        .enumerate()
+        .map(|(i, v)| wgpu::BindGroupEntry { binding: i as u32, resource: wgpu::BindingResource::TextureView(v) })
+        .collect();
+    if let Some(u) = uniform {
+        entries.push(wgpu::BindGroupEntry { binding: views.len() as u32, resource: u.as_entire_binding() });
+    }
+    device.create_bind_group(&wgpu::BindGroupDescriptor { label: None, layout, entries: &entries })
+}
+
+/// A pipeline that draws a full-screen triangle (`vs_main`/`fs_main` of `module`) into one target.
+pub fn fullscreen_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    layouts: &[Option<&wgpu::BindGroupLayout>],
+    format: wgpu::TextureFormat,
+    blend: Option<wgpu::BlendState>,
+) -> wgpu::RenderPipeline {
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: layouts,
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: None,
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState { format, blend, write_mask: wgpu::ColorWrites::ALL })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// Begins a render pass writing `view` (cleared to black unless `load`).
+pub fn color_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    view: &wgpu::TextureView,
+    load: bool,
+) -> wgpu::RenderPass<'e> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: if load { wgpu::LoadOp::Load } else { wgpu::LoadOp::Clear(wgpu::Color::BLACK) },
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}

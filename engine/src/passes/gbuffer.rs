@@ -1,0 +1,111 @@
+//! Rasterises the scene from the camera into the G-buffer.
+
+use super::names::*;
+use super::HDR_FORMAT;
+use crate::globals::CoreLayouts;
+use crate::gpu::Gpu;
+use crate::gpu_scene::VERTEX_LAYOUT;
+use crate::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
+
+pub const SHADER: &str = include_str!("../../../shaders/gbuffer.wgsl");
+
+pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+pub const POSITION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+pub struct GBufferPass {
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl GBufferPass {
+    pub fn new(gpu: &Gpu, layouts: &CoreLayouts) -> Self {
+        let device = &gpu.device;
+        let module = crate::shader::module(device, "gbuffer", SHADER, &[]);
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gbuffer"),
+            bind_group_layouts: &[Some(&layouts.globals), Some(&layouts.material)],
+            immediate_size: 0,
+        });
+        let target = |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("gbuffer"),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(VERTEX_LAYOUT)],
+            },
+            // No culling: files come with either winding and single-sided walls; the shader
+            // turns the normal towards the viewer.
+            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Greater),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[target(ALBEDO_FORMAT), target(HDR_FORMAT), target(POSITION_FORMAT), target(HDR_FORMAT)],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Self { pipeline }
+    }
+}
+
+impl RenderPass for GBufferPass {
+    fn name(&self) -> &str {
+        "gbuffer"
+    }
+
+    fn declare(&self, d: &mut PassDecl) {
+        d.create_texture(GBUFFER_ALBEDO, TextureDesc::target(ALBEDO_FORMAT))
+            .create_texture(GBUFFER_NORMAL, TextureDesc::target(HDR_FORMAT))
+            .create_texture(GBUFFER_POSITION, TextureDesc::target(POSITION_FORMAT))
+            .create_texture(GBUFFER_EMISSIVE, TextureDesc::target(HDR_FORMAT))
+            .create_texture(GBUFFER_DEPTH, TextureDesc::target(DEPTH_FORMAT));
+    }
+
+    fn run(&mut self, ctx: &mut PassContext<'_>) {
+        let attachment = |name: &str| {
+            Some(wgpu::RenderPassColorAttachment {
+                view: ctx.view(name),
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        };
+        let colors = [
+            attachment(GBUFFER_ALBEDO),
+            attachment(GBUFFER_NORMAL),
+            attachment(GBUFFER_POSITION),
+            attachment(GBUFFER_EMISSIVE),
+        ];
+        let depth = ctx.view(GBUFFER_DEPTH);
+        let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("gbuffer"),
+            color_attachments: &colors,
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth,
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, ctx.frame.globals, &[]);
+        ctx.frame.scene.draw_all(&mut pass);
+    }
+}

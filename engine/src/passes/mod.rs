@@ -1,0 +1,43 @@
+//! The engine's core passes: G-buffer → direct light → composite → [plugins] → present.
+
+mod composite;
+mod direct_light;
+mod fullscreen;
+mod gbuffer;
+mod present;
+
+pub use composite::CompositePass;
+pub use direct_light::DirectLightPass;
+pub use fullscreen::{bind_textures, color_pass, fullscreen_pipeline, textures_layout};
+pub use gbuffer::GBufferPass;
+pub use present::{OutputView, PresentPass, PresentSettings};
+
+/// Names of the graph resources the core passes create; plugins read and write them by name.
+pub mod names {
+    /// Linear diffuse albedo ρ (Rgba8UnormSrgb).
+    pub const GBUFFER_ALBEDO: &str = "gbuffer.albedo";
+    /// World-space unit normal, facing the camera; w = 1 where there is geometry (Rgba16Float).
+    pub const GBUFFER_NORMAL: &str = "gbuffer.normal";
+    /// World-space position; w = view-space depth in metres, 0 for sky (Rgba32Float).
+    pub const GBUFFER_POSITION: &str = "gbuffer.position";
+    /// Emitted radiance (Rgba16Float).
+    pub const GBUFFER_EMISSIVE: &str = "gbuffer.emissive";
+    /// Reversed depth buffer (Depth32Float).
+    pub const GBUFFER_DEPTH: &str = "gbuffer.depth";
+    /// Direct radiance from the headlamp and punctual lights (Rgba16Float).
+    pub const DIRECT: &str = "direct";
+    /// The frame's linear radiance; plugins blend additively into it (Rgba16Float).
+    pub const HDR: &str = "hdr";
+    /// The imported output image (swapchain or readback target).
+    pub const OUTPUT: &str = "output";
+}
+
+pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// Every WGSL file of the core passes, for tests that validate them.
+pub const SHADERS: &[(&str, &str)] = &[
+    ("gbuffer.wgsl", gbuffer::SHADER),
+    ("direct_light.wgsl", direct_light::SHADER),
+    ("composite.wgsl", composite::SHADER),
+    ("present.wgsl", present::SHADER),
+];

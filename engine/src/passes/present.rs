@@ -1,0 +1,108 @@
+//! Writes the selected view into the output image: tonemapped (display, PNG) or linear (EXR).
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::rc::Rc;
+
+use super::fullscreen::{bind_textures, color_pass, fullscreen_pipeline, textures_layout};
+use super::names::*;
+use crate::globals::CoreLayouts;
+use crate::gpu::Gpu;
+use crate::graph::{PassContext, PassDecl, RenderPass};
+
+pub const SHADER: &str = include_str!("../../../shaders/present.wgsl");
+
+/// How a view's texture is turned into a picture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputView {
+    /// Linear radiance: exposure + filmic tonemap for display, as-is for EXR.
+    Radiance,
+    /// A colour shown as-is (albedo, debug overlays).
+    Color,
+    /// A unit normal, shown as n·½+½.
+    Normal,
+    /// The `w` channel holds a distance in metres.
+    Depth,
+}
+
+impl OutputView {
+    fn code(self) -> u32 {
+        match self {
+            OutputView::Radiance => 0,
+            OutputView::Color => 1,
+            OutputView::Normal => 2,
+            OutputView::Depth => 3,
+        }
+    }
+}
+
+/// What the present pass shows; shared with the renderer, which changes it between frames.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PresentSettings {
+    /// Graph resource to show.
+    pub source: String,
+    pub kind: OutputView,
+}
+
+pub struct PresentPass {
+    settings: Rc<RefCell<PresentSettings>>,
+    inputs: wgpu::BindGroupLayout,
+    globals_layout: wgpu::BindGroupLayout,
+    module: wgpu::ShaderModule,
+    pipelines: HashMap<wgpu::TextureFormat, wgpu::RenderPipeline>,
+    params: wgpu::Buffer,
+}
+
+impl PresentPass {
+    pub fn new(gpu: &Gpu, layouts: &CoreLayouts, settings: Rc<RefCell<PresentSettings>>) -> Self {
+        let device = &gpu.device;
+        Self {
+            settings,
+            inputs: textures_layout(device, "present inputs", 1, true),
+            globals_layout: layouts.globals.clone(),
+            module: crate::shader::module(device, "present", SHADER, &[]),
+            pipelines: HashMap::new(),
+            params: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("present params"),
+                size: 16,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+        }
+    }
+}
+
+impl RenderPass for PresentPass {
+    fn name(&self) -> &str {
+        "present"
+    }
+
+    fn declare(&self, d: &mut PassDecl) {
+        d.read(&self.settings.borrow().source).write(OUTPUT);
+    }
+
+    fn run(&mut self, ctx: &mut PassContext<'_>) {
+        let settings = self.settings.borrow().clone();
+        let format = ctx.texture(OUTPUT).format();
+        // A float output is read back as linear values (EXR); anything else is a picture.
+        let linear = format == wgpu::TextureFormat::Rgba32Float;
+        // Non-sRGB 8-bit outputs (some swapchains) need the encoding done in the shader.
+        let encode_srgb = !linear && !format.is_srgb();
+        let mode = [settings.kind.code(), linear as u32, encode_srgb as u32, 0];
+        ctx.gpu.queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&mode));
+
+        let device = &ctx.gpu.device;
+        let (module, globals) = (&self.module, &self.globals_layout);
+        let inputs_layout = &self.inputs;
+        let pipeline = self.pipelines.entry(format).or_insert_with(|| {
+            fullscreen_pipeline(device, "present", module, &[Some(globals), Some(inputs_layout)], format, None)
+        });
+        let inputs = bind_textures(device, inputs_layout, &[ctx.view(&settings.source)], Some(&self.params));
+        let target = ctx.view(OUTPUT);
+        let mut pass = color_pass(ctx.encoder, "present", target, false);
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, ctx.frame.globals, &[]);
+        pass.set_bind_group(1, &inputs, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}

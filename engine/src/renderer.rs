@@ -1,0 +1,102 @@
+//! The deferred renderer: core passes + plugins in one render graph, driven the same way for a
+//! window and for headless rendering.
+
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use scene::Scene;
+
+use crate::frame::{Frame, ViewState};
+use crate::globals::{CoreLayouts, GlobalsGpu};
+use crate::gpu::Gpu;
+use crate::gpu_scene::GpuScene;
+use crate::graph::{GraphError, ImportedTexture, RenderGraph};
+use crate::passes::{names, CompositePass, DirectLightPass, GBufferPass, OutputView, PresentPass, PresentSettings};
+use crate::plugin::{Plugin, PluginContext, ViewEntry};
+
+pub struct Renderer {
+    layouts: CoreLayouts,
+    globals: GlobalsGpu,
+    scene: GpuScene,
+    graph: RenderGraph,
+    present: Rc<RefCell<PresentSettings>>,
+    views: Vec<ViewEntry>,
+    plugins: Vec<Box<dyn Plugin>>,
+}
+
+impl Renderer {
+    pub fn new(gpu: &Gpu, scene: &Scene, mut plugins: Vec<Box<dyn Plugin>>) -> Result<Self, GraphError> {
+        let layouts = CoreLayouts::new(&gpu.device);
+        let globals = GlobalsGpu::new(gpu, &layouts);
+        let gpu_scene = GpuScene::upload(gpu, &layouts, scene);
+        let present = Rc::new(RefCell::new(PresentSettings { source: names::HDR.into(), kind: OutputView::Radiance }));
+
+        let mut graph = RenderGraph::new();
+        graph.import(names::OUTPUT);
+        graph.add_pass(Box::new(GBufferPass::new(gpu, &layouts)));
+        graph.add_pass(Box::new(DirectLightPass::new(gpu, &layouts)));
+        graph.add_pass(Box::new(CompositePass::new(gpu, &layouts)));
+        graph.add_pass(Box::new(PresentPass::new(gpu, &layouts, present.clone())));
+
+        let view = |name: &str, source: &str, kind| ViewEntry { name: name.into(), source: source.into(), kind };
+        let mut views = vec![
+            view("final", names::HDR, OutputView::Radiance),
+            view("direct", names::DIRECT, OutputView::Radiance),
+            view("albedo", names::GBUFFER_ALBEDO, OutputView::Color),
+            view("normal", names::GBUFFER_NORMAL, OutputView::Normal),
+            view("depth", names::GBUFFER_POSITION, OutputView::Depth),
+        ];
+        for plugin in &mut plugins {
+            let mut ctx = PluginContext { gpu, layouts: &layouts, graph: &mut graph, views: &mut views };
+            plugin.build(&mut ctx);
+            log::info!("plugin '{}' built", plugin.name());
+        }
+        graph.compile()?;
+        Ok(Self { layouts, globals, scene: gpu_scene, graph, present, views, plugins })
+    }
+
+    pub fn views(&self) -> &[ViewEntry] {
+        &self.views
+    }
+
+    pub fn plugins(&self) -> &[Box<dyn Plugin>] {
+        &self.plugins
+    }
+
+    pub fn graph(&self) -> &RenderGraph {
+        &self.graph
+    }
+
+    /// Shows view `name` from the next frame on.
+    pub fn set_view(&mut self, name: &str) -> Result<(), String> {
+        let entry = self.views.iter().find(|v| v.name == name).ok_or_else(|| {
+            let known: Vec<&str> = self.views.iter().map(|v| v.name.as_str()).collect();
+            format!("unknown view '{name}' (expected one of: {})", known.join(", "))
+        })?;
+        let wanted = PresentSettings { source: entry.source.clone(), kind: entry.kind };
+        if *self.present.borrow() != wanted {
+            *self.present.borrow_mut() = wanted;
+            self.graph.invalidate();
+        }
+        Ok(())
+    }
+
+    /// Records and submits one frame into `target` (which the graph sees as `output`).
+    pub fn render(
+        &mut self,
+        gpu: &Gpu,
+        view: &ViewState,
+        target: &wgpu::Texture,
+        target_view: &wgpu::TextureView,
+    ) -> Result<wgpu::SubmissionIndex, GraphError> {
+        let size = (target.width(), target.height());
+        let lamp = view.headlamp.frustum(&view.camera, size.0 as f32 / size.1.max(1) as f32);
+        self.globals.update(gpu, &self.layouts, view, &lamp, size);
+        let frame =
+            Frame { size, view, lamp, scene: &self.scene, layouts: &self.layouts, globals: &self.globals.bind_group };
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
+        let imports = [ImportedTexture { name: names::OUTPUT, texture: target, view: target_view }];
+        self.graph.execute(gpu, &frame, &mut encoder, &imports)?;
+        Ok(gpu.queue.submit([encoder.finish()]))
+    }
+}

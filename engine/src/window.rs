@@ -1,0 +1,230 @@
+//! The window loop (winit `ApplicationHandler`): owns the surface and GPU, turns events into
+//! [`Input`], and asks the app for a frame. Resizes, minimising to 0×0 and lost or outdated
+//! surfaces are handled here so no app has to.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::Context;
+use winit::application::ApplicationHandler;
+use winit::event::{DeviceEvent, DeviceId, ElementState, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::window::{CursorGrabMode, Window, WindowId};
+
+use crate::gpu::Gpu;
+use crate::input::{Input, MouseButton};
+
+/// What a windowed program provides.
+pub trait WindowApp {
+    /// The window and GPU exist; `format` is the surface's.
+    fn init(&mut self, gpu: &Gpu, format: wgpu::TextureFormat) -> anyhow::Result<()>;
+    /// Advances the program by `dt` seconds of wall time.
+    fn update(&mut self, input: &Input, dt: f32);
+    /// Draws into the surface texture.
+    fn render(&mut self, gpu: &Gpu, target: &wgpu::Texture, view: &wgpu::TextureView) -> anyhow::Result<()>;
+    /// Every raw window event, before the engine's own handling (e.g. for a UI library).
+    fn window_event(&mut self, _window: &Window, _event: &WindowEvent) {}
+    fn wants_exit(&self) -> bool {
+        false
+    }
+}
+
+/// Opens a window and runs `app` until it closes; returns the first error the app reported.
+pub fn run(title: &str, app: impl WindowApp) -> anyhow::Result<()> {
+    let event_loop = EventLoop::new().context("could not open a window (is a display available?)")?;
+    event_loop.set_control_flow(ControlFlow::Poll);
+    let mut runner = Runner {
+        app,
+        title: title.to_owned(),
+        state: None,
+        input: Input::default(),
+        last: Instant::now(),
+        error: None,
+    };
+    event_loop.run_app(&mut runner).context("window event loop failed")?;
+    match runner.error {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+struct WindowState {
+    window: Arc<Window>,
+    surface: wgpu::Surface<'static>,
+    config: wgpu::SurfaceConfiguration,
+    gpu: Gpu,
+}
+
+struct Runner<A: WindowApp> {
+    app: A,
+    title: String,
+    state: Option<WindowState>,
+    input: Input,
+    last: Instant,
+    error: Option<anyhow::Error>,
+}
+
+impl<A: WindowApp> Runner<A> {
+    fn create(&mut self, event_loop: &ActiveEventLoop) -> anyhow::Result<()> {
+        let attrs = Window::default_attributes()
+            .with_title(&self.title)
+            .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
+        let window = Arc::new(event_loop.create_window(attrs).context("could not create the window")?);
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let surface =
+            instance.create_surface(window.clone()).context("could not create a drawing surface for the window")?;
+        let gpu = Gpu::for_surface(instance, &surface)?;
+        let size = window.inner_size();
+        let mut config = surface
+            .get_default_config(&gpu.adapter, size.width.max(1), size.height.max(1))
+            .context("the GPU cannot present to this window")?;
+        // Prefer an sRGB format so the present pass's output is encoded by the hardware.
+        let caps = surface.get_capabilities(&gpu.adapter);
+        if let Some(&srgb) = caps.formats.iter().find(|f| f.is_srgb()) {
+            config.format = srgb;
+        }
+        config.present_mode = wgpu::PresentMode::AutoVsync;
+        surface.configure(&gpu.device, &config);
+        self.app.init(&gpu, config.format)?;
+        self.state = Some(WindowState { window, surface, config, gpu });
+        Ok(())
+    }
+
+    fn set_captured(&mut self, captured: bool) {
+        let Some(state) = &self.state else { return };
+        if captured {
+            let grabbed = state
+                .window
+                .set_cursor_grab(CursorGrabMode::Locked)
+                .or_else(|_| state.window.set_cursor_grab(CursorGrabMode::Confined));
+            if grabbed.is_err() {
+                log::warn!("could not grab the mouse cursor");
+            }
+        } else {
+            let _ = state.window.set_cursor_grab(CursorGrabMode::None);
+        }
+        state.window.set_cursor_visible(!captured);
+        self.input.captured = captured;
+    }
+
+    fn frame(&mut self) -> anyhow::Result<()> {
+        let now = Instant::now();
+        let dt = (now - self.last).as_secs_f32().min(0.25);
+        self.last = now;
+        self.app.update(&self.input, dt);
+        self.input.end_frame();
+
+        let Some(state) = &mut self.state else { return Ok(()) };
+        if state.config.width == 0 || state.config.height == 0 {
+            return Ok(()); // minimised: nothing to draw into
+        }
+        let (texture, suboptimal) = match state.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(t) => (t, false),
+            wgpu::CurrentSurfaceTexture::Suboptimal(t) => (t, true),
+            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => return Ok(()),
+            wgpu::CurrentSurfaceTexture::Outdated => {
+                state.surface.configure(&state.gpu.device, &state.config);
+                return Ok(());
+            }
+            wgpu::CurrentSurfaceTexture::Lost => {
+                state.surface = state
+                    .gpu
+                    .instance
+                    .create_surface(state.window.clone())
+                    .context("could not recreate the lost surface")?;
+                state.surface.configure(&state.gpu.device, &state.config);
+                return Ok(());
+            }
+            wgpu::CurrentSurfaceTexture::Validation => {
+                log::warn!("surface texture validation error; skipping a frame");
+                return Ok(());
+            }
+        };
+        let view = texture.texture.create_view(&wgpu::TextureViewDescriptor::default());
+        self.app.render(&state.gpu, &texture.texture, &view)?;
+        state.window.pre_present_notify();
+        state.gpu.queue.present(texture);
+        if suboptimal {
+            state.surface.configure(&state.gpu.device, &state.config);
+        }
+        Ok(())
+    }
+
+    fn fail(&mut self, event_loop: &ActiveEventLoop, e: anyhow::Error) {
+        self.error.get_or_insert(e);
+        event_loop.exit();
+    }
+}
+
+impl<A: WindowApp> ApplicationHandler for Runner<A> {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.state.is_none() {
+            if let Err(e) = self.create(event_loop) {
+                self.fail(event_loop, e);
+            }
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        if let Some(state) = &self.state {
+            self.app.window_event(&state.window, &event);
+        }
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => {
+                if let Some(state) = &mut self.state {
+                    state.config.width = size.width;
+                    state.config.height = size.height;
+                    if size.width > 0 && size.height > 0 {
+                        state.surface.configure(&state.gpu.device, &state.config);
+                    }
+                }
+            }
+            WindowEvent::Focused(false) => {
+                self.input.release_all();
+                self.set_captured(false);
+            }
+            WindowEvent::KeyboardInput { event, .. } => {
+                if let PhysicalKey::Code(code) = event.physical_key {
+                    let down = event.state == ElementState::Pressed;
+                    if code == KeyCode::Escape && down && self.input.captured {
+                        self.set_captured(false);
+                    }
+                    self.input.key_event(code, down, event.repeat);
+                }
+            }
+            WindowEvent::MouseInput { state, button, .. } => {
+                let down = state == ElementState::Pressed;
+                if down && button == MouseButton::Left && !self.input.captured {
+                    self.set_captured(true);
+                } else {
+                    self.input.mouse_button(button, down);
+                }
+            }
+            WindowEvent::RedrawRequested => {
+                if let Err(e) = self.frame() {
+                    self.fail(event_loop, e);
+                }
+                if self.app.wants_exit() {
+                    event_loop.exit();
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn device_event(&mut self, _event_loop: &ActiveEventLoop, _id: DeviceId, event: DeviceEvent) {
+        if let DeviceEvent::MouseMotion { delta } = event {
+            if self.input.captured {
+                self.input.mouse_delta += glam::Vec2::new(delta.0 as f32, delta.1 as f32);
+            }
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(state) = &self.state {
+            state.window.request_redraw();
+        }
+    }
+}
