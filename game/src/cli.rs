@@ -1,0 +1,114 @@
+//! The `headlamp` command line.
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+use glam::Vec3;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "headlamp",
+    version,
+    about = "Headlamp: a first-person shooter lit by real-time global illumination from your headlamp"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Play a level in a window (the default).
+    Play(PlayArgs),
+    /// Render one frame headless (no window, no display) to a PNG or a linear EXR.
+    Render(RenderArgs),
+}
+
+#[derive(clap::Args, Debug, Default)]
+pub struct PlayArgs {
+    /// A level folder or a bare .gltf/.glb/.obj file [default: the shipped level].
+    #[arg(long)]
+    pub level: Option<PathBuf>,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    /// A level folder or a bare .gltf/.glb/.obj file.
+    #[arg(long)]
+    pub level: PathBuf,
+    /// Output file: .png (tonemapped) or .exr (linear values).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Image size in pixels.
+    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// What to show: final, direct, albedo, normal, depth.
+    #[arg(long, default_value = "final")]
+    pub view: String,
+    /// Camera eye and target: EX,EY,EZ:TX,TY,TZ (metres).
+    #[arg(long, value_parser = parse_camera)]
+    pub camera: Option<(Vec3, Vec3)>,
+    /// Vertical field of view of both camera and headlamp, in degrees.
+    #[arg(long, value_parser = parse_fov)]
+    pub fov: Option<f32>,
+}
+
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT (e.g. 1280x720)"))?;
+    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|&n| (1..=16384).contains(&n));
+    match (parse(w), parse(h)) {
+        (Some(w), Some(h)) => Ok((w, h)),
+        _ => Err(format!("'{s}': width and height must be whole numbers from 1 to 16384")),
+    }
+}
+
+fn parse_vec3(s: &str) -> Option<Vec3> {
+    let v: Vec<f32> = s.split(',').map(|c| c.trim().parse::<f32>()).collect::<Result<_, _>>().ok()?;
+    (v.len() == 3 && v.iter().all(|c| c.is_finite())).then(|| Vec3::new(v[0], v[1], v[2]))
+}
+
+pub fn parse_camera(s: &str) -> Result<(Vec3, Vec3), String> {
+    let bad = || format!("'{s}' is not EX,EY,EZ:TX,TY,TZ (six numbers)");
+    let (eye, target) = s.split_once(':').ok_or_else(bad)?;
+    let (eye, target) = (parse_vec3(eye).ok_or_else(bad)?, parse_vec3(target).ok_or_else(bad)?);
+    if (eye - target).length() < 1e-6 {
+        return Err(format!("'{s}': eye and target are the same point"));
+    }
+    Ok((eye, target))
+}
+
+pub fn parse_fov(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v > 0.5 && v < 179.5 => Ok(v),
+        _ => Err(format!("'{s}': field of view must be a number of degrees between 0.5 and 179.5")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes() {
+        assert_eq!(parse_size("640x360"), Ok((640, 360)));
+        assert!(parse_size("640").is_err());
+        assert!(parse_size("0x10").is_err());
+        assert!(parse_size("axb").is_err());
+    }
+
+    #[test]
+    fn cameras() {
+        let (e, t) = parse_camera("0,1,2:3,4,5").unwrap();
+        assert_eq!((e, t), (Vec3::new(0.0, 1.0, 2.0), Vec3::new(3.0, 4.0, 5.0)));
+        assert!(parse_camera("0,1:3,4,5").is_err());
+        assert!(parse_camera("1,1,1:1,1,1").is_err());
+        assert!(parse_camera("nan,1,1:0,0,0").is_err());
+    }
+
+    #[test]
+    fn fovs() {
+        assert_eq!(parse_fov("60"), Ok(60.0));
+        assert!(parse_fov("0").is_err());
+        assert!(parse_fov("180").is_err());
+    }
+}

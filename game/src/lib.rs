@@ -1,0 +1,23 @@
+//! Headlamp, the game: command line, play loop, and how the engine and the GI plugin are wired.
+
+pub mod cli;
+pub mod play;
+pub mod render_cmd;
+
+use std::path::PathBuf;
+
+/// The render plugins the game runs with.
+pub fn plugins() -> Vec<Box<dyn engine::plugin::Plugin>> {
+    Vec::new()
+}
+
+/// The level `headlamp` plays when none is named: the shipped one beside the executable's
+/// source tree, or `levels/cellar` under the working directory.
+pub fn default_level() -> PathBuf {
+    let beside_source = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../levels/cellar"));
+    if beside_source.join("level.toml").exists() {
+        beside_source
+    } else {
+        PathBuf::from("levels/cellar")
+    }
+}

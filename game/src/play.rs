@@ -1,0 +1,84 @@
+//! `headlamp play`: the level in a window with a free-fly camera (the game proper comes later).
+
+use std::path::Path;
+
+use engine::camera::yaw_pitch_rotation;
+use engine::frame::ViewState;
+use engine::gpu::Gpu;
+use engine::input::{Input, KeyCode};
+use engine::renderer::Renderer;
+use engine::scene::Level;
+use engine::start_view::{initial_view, ViewOverrides};
+use engine::window::WindowApp;
+use glam::Vec3;
+
+/// Radians of view rotation per pixel of mouse motion.
+const MOUSE_SENSITIVITY: f32 = 0.0025;
+const FLY_SPEED: f32 = 4.0;
+
+pub fn run(level_path: &Path) -> anyhow::Result<()> {
+    let level = engine::scene::load_level(level_path)?;
+    let view = initial_view(&level, &ViewOverrides::default());
+    let (yaw, pitch) = yaw_pitch_of(view.camera.forward());
+    let app = FreeFly { level, view, yaw, pitch, renderer: None };
+    engine::window::run("Headlamp", app)
+}
+
+struct FreeFly {
+    level: Level,
+    view: ViewState,
+    yaw: f32,
+    pitch: f32,
+    renderer: Option<Renderer>,
+}
+
+fn yaw_pitch_of(forward: Vec3) -> (f32, f32) {
+    let f = forward.normalize();
+    ((-f.x).atan2(-f.z), f.y.clamp(-1.0, 1.0).asin())
+}
+
+impl WindowApp for FreeFly {
+    fn init(&mut self, gpu: &Gpu, _format: engine::wgpu::TextureFormat) -> anyhow::Result<()> {
+        self.renderer = Some(Renderer::new(gpu, &self.level.scene, crate::plugins())?);
+        Ok(())
+    }
+
+    fn update(&mut self, input: &Input, dt: f32) {
+        if input.captured {
+            self.yaw -= input.mouse_delta.x * MOUSE_SENSITIVITY;
+            self.pitch = (self.pitch - input.mouse_delta.y * MOUSE_SENSITIVITY).clamp(-1.55, 1.55);
+        }
+        let camera = &mut self.view.camera;
+        camera.rotation = yaw_pitch_rotation(self.yaw, self.pitch);
+        let (forward, right) = (camera.forward(), camera.rotation * Vec3::X);
+        let mut motion = Vec3::ZERO;
+        for (key, dir) in [
+            (KeyCode::KeyW, forward),
+            (KeyCode::KeyS, -forward),
+            (KeyCode::KeyD, right),
+            (KeyCode::KeyA, -right),
+            (KeyCode::Space, Vec3::Y),
+            (KeyCode::KeyC, -Vec3::Y),
+        ] {
+            if input.held(key) {
+                motion += dir;
+            }
+        }
+        let speed = if input.held(KeyCode::ShiftLeft) { FLY_SPEED * 3.0 } else { FLY_SPEED };
+        camera.position += motion.normalize_or_zero() * speed * dt;
+        if input.pressed(KeyCode::KeyF) {
+            self.view.headlamp.on = !self.view.headlamp.on;
+        }
+    }
+
+    fn render(
+        &mut self,
+        gpu: &Gpu,
+        target: &engine::wgpu::Texture,
+        view: &engine::wgpu::TextureView,
+    ) -> anyhow::Result<()> {
+        let renderer = self.renderer.as_mut().expect("init runs before render");
+        renderer.render(gpu, &self.view, target, view)?;
+        Ok(())
+    }
+}

@@ -1,0 +1,24 @@
+//! `headlamp render`: one headless frame of a level to PNG or EXR.
+
+use anyhow::anyhow;
+use engine::gpu::Gpu;
+use engine::headless::HeadlessTarget;
+use engine::renderer::Renderer;
+use engine::start_view::{initial_view, ViewOverrides};
+
+use crate::cli::RenderArgs;
+
+pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
+    let kind = engine::output::kind_for_path(&args.out)?;
+    let level = engine::scene::load_level(&args.level)?;
+    let gpu = Gpu::headless()?;
+    let mut renderer = Renderer::new(&gpu, &level.scene, crate::plugins())?;
+    renderer.set_view(&args.view).map_err(|e| anyhow!("--view: {e}"))?;
+    let overrides = ViewOverrides { look: args.camera, fov_y: args.fov.map(f32::to_radians) };
+    let view = initial_view(&level, &overrides);
+    let target = HeadlessTarget::new(&gpu, args.size.0, args.size.1, kind);
+    let image = target.render(&gpu, &mut renderer, &view)?;
+    engine::output::save(&image, &args.out)?;
+    println!("wrote {} ({}x{}, view {})", args.out.display(), args.size.0, args.size.1, args.view);
+    Ok(())
+}

@@ -1,0 +1,167 @@
+//! `headlamp render` as a user runs it: arbitrary glTF/OBJ files, radiometrically correct EXR,
+//! and one clear line for every kind of bad input.
+
+use std::f32::consts::PI;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn headlamp(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_headlamp")).args(args).output().expect("run headlamp")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("headlamp-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn khronos(file: &str) -> String {
+    format!("{}/../../shared/testdata/khronos/{file}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn assert_ok(out: &Output) {
+    assert!(out.status.success(), "headlamp failed: {}", String::from_utf8_lossy(&out.stderr));
+}
+
+/// A 40 m quad in the plane z = `z` facing +Z, albedo `rho`, as a base64-embedded glTF.
+fn write_plane_gltf(path: &Path, z: f32, rho: f32) {
+    let s = 20.0f32;
+    let positions: [[f32; 3]; 4] = [[-s, -s, z], [s, -s, z], [s, s, z], [-s, s, z]];
+    let mut bytes: Vec<u8> = positions.iter().flatten().flat_map(|v| v.to_le_bytes()).collect();
+    bytes.extend([0u16, 1, 2, 0, 2, 3].iter().flat_map(|i| i.to_le_bytes()));
+    let b64 = base64(&bytes);
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
+        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1,"material":0}}]}}],
+        "materials":[{{"pbrMetallicRoughness":{{"baseColorFactor":[{rho},{rho},{rho},1.0]}}}}],
+        "buffers":[{{"byteLength":{len},"uri":"data:application/octet-stream;base64,{b64}"}}],
+        "bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":48}},{{"buffer":0,"byteOffset":48,"byteLength":12}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-{s},-{s},{z}],"max":[{s},{s},{z}]}},
+                     {{"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}}]}}"#,
+        len = bytes.len()
+    );
+    std::fs::write(path, json).unwrap();
+}
+
+fn base64(data: &[u8]) -> String {
+    const T: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::new();
+    for chunk in data.chunks(3) {
+        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
+        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
+        for i in 0..4 {
+            if i <= chunk.len() {
+                out.push(T[(n >> (18 - 6 * i) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn exr_of_a_bare_gltf_reads_rho_over_pi_d_squared() {
+    let dir = scratch("plane");
+    let (d, rho) = (3.0f32, 0.6f32);
+    let gltf = dir.join("plane.gltf");
+    write_plane_gltf(&gltf, -d, rho);
+    let exr = dir.join("direct.exr");
+    let out = headlamp(&[
+        "render",
+        "--level",
+        gltf.to_str().unwrap(),
+        "--out",
+        exr.to_str().unwrap(),
+        "--size",
+        "64x64",
+        "--view",
+        "direct",
+        "--camera",
+        "0,0,0:0,0,-1",
+        "--fov",
+        "50",
+    ]);
+    assert_ok(&out);
+    let img = image::open(&exr).unwrap().into_rgb32f();
+    let centre: f32 =
+        [(31, 31), (32, 31), (31, 32), (32, 32)].iter().map(|&(x, y)| img.get_pixel(x, y)[0]).sum::<f32>() / 4.0;
+    let want = rho / (PI * d * d);
+    assert!((centre - want).abs() / want < 0.01, "centre radiance {centre}, expected {want}");
+}
+
+#[test]
+fn renders_the_khronos_conformance_files_from_their_own_cameras() {
+    let dir = scratch("khronos");
+    for file in ["Box.gltf", "Cameras.gltf"] {
+        let png = dir.join(file.replace(".gltf", ".png"));
+        let out = headlamp(&["render", "--level", &khronos(file), "--out", png.to_str().unwrap(), "--size", "96x96"]);
+        assert_ok(&out);
+        let img = image::open(&png).unwrap().into_rgba8();
+        let lit = img.pixels().filter(|p| p[0] > 10 || p[1] > 10 || p[2] > 10).count();
+        assert!(lit > 96 * 96 / 20, "{file}: only {lit} lit pixels — the model is not in view or unlit");
+    }
+}
+
+#[test]
+fn renders_an_obj_and_every_view() {
+    let dir = scratch("obj");
+    let obj = dir.join("tri.obj");
+    std::fs::write(&obj, "v -1 -1 -3\nv 1 -1 -3\nv 0 1 -3\nf 1 2 3\n").unwrap();
+    for view in ["final", "direct", "albedo", "normal", "depth"] {
+        let png = dir.join(format!("{view}.png"));
+        let out = headlamp(&[
+            "render",
+            "--level",
+            obj.to_str().unwrap(),
+            "--out",
+            png.to_str().unwrap(),
+            "--size",
+            "48x48",
+            "--view",
+            view,
+        ]);
+        assert_ok(&out);
+        let img = image::open(&png).unwrap().into_rgba8();
+        assert!(img.pixels().any(|p| p[0] > 0), "view {view} is black");
+    }
+}
+
+/// Exits non-zero with exactly one line on stderr containing every `needles`, and no panic.
+fn assert_one_line_error(args: &[&str], needles: &[&str]) {
+    let out = headlamp(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{args:?} should fail");
+    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+    assert_eq!(stderr.trim().lines().count(), 1, "{args:?} should print one line, got:\n{stderr}");
+    for n in needles {
+        assert!(stderr.contains(n), "{args:?}: '{n}' missing from: {stderr}");
+    }
+}
+
+#[test]
+fn bad_input_gives_one_clear_line() {
+    let dir = scratch("bad");
+    let out = dir.join("x.png");
+    let out = out.to_str().unwrap();
+    assert_one_line_error(
+        &["render", "--level", "/nonexistent/level.gltf", "--out", out],
+        &["/nonexistent/level.gltf"],
+    );
+    let corrupt = dir.join("corrupt.gltf");
+    std::fs::write(&corrupt, "{ this is not json").unwrap();
+    assert_one_line_error(&["render", "--level", corrupt.to_str().unwrap(), "--out", out], &["corrupt.gltf"]);
+    let unknown = dir.join("scene.xyz");
+    std::fs::write(&unknown, "hello").unwrap();
+    assert_one_line_error(&["render", "--level", unknown.to_str().unwrap(), "--out", out], &["scene.xyz"]);
+    let good = khronos("Box.gltf");
+    assert_one_line_error(&["render", "--level", &good, "--out", out, "--size", "big"], &["big"]);
+    assert_one_line_error(&["render", "--level", &good, "--out", out, "--camera", "1,2:3"], &["1,2:3"]);
+    assert_one_line_error(&["render", "--level", &good, "--out", "x.bmp"], &["x.bmp"]);
+    assert_one_line_error(&["render", "--level", &good, "--out", out, "--view", "sideways"], &["sideways"]);
+    assert_one_line_error(&["render", "--level", &good, "--out", out, "--bogus"], &["--bogus"]);
+    assert_one_line_error(
+        &["render", "--level", &good, "--out", "/nonexistent-dir/x.png"],
+        &["/nonexistent-dir/x.png"],
+    );
+}
