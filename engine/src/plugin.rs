@@ -9,6 +9,10 @@ use crate::passes::OutputView;
 pub trait Plugin {
     fn name(&self) -> &str;
     fn build(&mut self, ctx: &mut PluginContext<'_>);
+    /// Figures about the last frame (e.g. light counts, draw calls), for `bench` and overlays.
+    fn stats(&self) -> Vec<(String, f64)> {
+        Vec::new()
+    }
 }
 
 /// A view `headlamp render --view NAME` can show: a graph resource and how to display it.
