@@ -53,6 +53,11 @@ fn lamp_intensity_towards(x: vec3f) -> vec3f {
     return globals.lamp_intensity.rgb * t;
 }
 
+// Narkowicz's fit of the ACES filmic curve.
+fn aces(x: vec3f) -> vec3f {
+    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3f(0.0), vec3f(1.0));
+}
+
 // A triangle covering the screen; uv has (0,0) at the top left.
 struct FullscreenOut {
     @builtin(position) position: vec4f,

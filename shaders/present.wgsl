@@ -16,11 +16,6 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenOut {
     return fullscreen_vertex(index);
 }
 
-// Narkowicz's fit of the ACES filmic curve.
-fn aces(x: vec3f) -> vec3f {
-    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3f(0.0), vec3f(1.0));
-}
-
 fn linear_to_srgb(c: vec3f) -> vec3f {
     let lo = c * 12.92;
     let hi = 1.055 * pow(c, vec3f(1.0 / 2.4)) - 0.055;

@@ -17,7 +17,8 @@ fn cellar() -> engine::scene::Level {
 
 /// Renders `view` of the cellar from the spawn point or from `look` (eye, target).
 fn frame(gpu: &Gpu, level: &engine::scene::Level, look: Option<(Vec3, Vec3)>, view: &str) -> image::RgbaImage {
-    let mut renderer = Renderer::new(gpu, &level.scene, game::plugins()).unwrap();
+    let (plugins, _gi) = game::plugins(plugin_gi::GiSettings::default());
+    let mut renderer = Renderer::new(gpu, &level.scene, plugins).unwrap();
     renderer.set_view(view).unwrap();
     let state = initial_view(level, &ViewOverrides { look, fov_y: None });
     let target = HeadlessTarget::new(gpu, SIZE.0, SIZE.1, ImageKind::Display);

@@ -73,10 +73,12 @@ impl Gpu {
     }
 
     fn open(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Gpu, GpuError> {
-        let wanted = wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
+        let timing = wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
+        // Blending into f32 targets lets plugins accumulate many small contributions exactly.
+        let wanted = timing | wgpu::Features::FLOAT32_BLENDABLE;
         let features = adapter.features() & wanted;
         let info = adapter.get_info();
-        log::info!("GPU adapter: {} ({:?}, {:?})", info.name, info.backend, info.device_type);
+        log::info!("GPU adapter: {} ({:?}, {:?}), features {:?}", info.name, info.backend, info.device_type, features);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("headlamp"),
             required_features: features,
@@ -88,11 +90,16 @@ impl Gpu {
             trace: wgpu::Trace::Off,
         }))
         .map_err(|e| GpuError::Device(e.to_string()))?;
-        Ok(Gpu { instance, adapter, device, queue, timestamps: features == wanted })
+        Ok(Gpu { instance, adapter, device, queue, timestamps: features.contains(timing) })
     }
 
     pub fn adapter_name(&self) -> String {
         self.adapter.get_info().name
+    }
+
+    /// Whether render targets of 32-bit float formats can be blended into.
+    pub fn float32_blendable(&self) -> bool {
+        self.device.features().contains(wgpu::Features::FLOAT32_BLENDABLE)
     }
 
     /// Blocks until all submitted work is done.

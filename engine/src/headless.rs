@@ -72,6 +72,25 @@ impl HeadlessTarget {
     }
 }
 
+/// Copies a buffer (which needs COPY_SRC usage) back to the CPU.
+pub fn read_buffer(gpu: &Gpu, buffer: &wgpu::Buffer) -> Vec<u8> {
+    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: buffer.size(),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
+    gpu.queue.submit([encoder.finish()]);
+    let slice = staging.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map readback buffer"));
+    gpu.wait_idle();
+    let bytes = slice.get_mapped_range().expect("readback buffer is mapped").to_vec();
+    staging.unmap();
+    bytes
+}
+
 /// Copies a 2D texture's first mip into tightly packed bytes (rows top to bottom).
 pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> Vec<u8> {
     let (width, height) = (texture.width(), texture.height());

@@ -74,10 +74,7 @@ impl Renderer {
             format!("unknown view '{name}' (expected one of: {})", known.join(", "))
         })?;
         let wanted = PresentSettings { source: entry.source.clone(), kind: entry.kind };
-        if *self.present.borrow() != wanted {
-            *self.present.borrow_mut() = wanted;
-            self.graph.invalidate();
-        }
+        *self.present.borrow_mut() = wanted;
         Ok(())
     }
 

@@ -51,6 +51,41 @@ pub struct RenderArgs {
     /// Vertical field of view of both camera and headlamp, in degrees.
     #[arg(long, value_parser = parse_fov)]
     pub fov: Option<f32>,
+    /// Indirect light (global illumination) on or off.
+    #[arg(long, value_parser = parse_on_off)]
+    pub gi: Option<bool>,
+    /// A GI setting, e.g. gi.light_budget=2048 (repeatable; see README for the names).
+    #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
+    pub settings: Vec<(String, String)>,
+}
+
+impl RenderArgs {
+    /// The GI settings these flags ask for, starting from the defaults.
+    pub fn gi_settings(&self) -> Result<plugin_gi::GiSettings, String> {
+        let mut gi = plugin_gi::GiSettings::default();
+        for (name, value) in &self.settings {
+            gi.set(name, value)?;
+        }
+        if let Some(on) = self.gi {
+            gi.enabled = on;
+        }
+        Ok(gi)
+    }
+}
+
+pub fn parse_on_off(s: &str) -> Result<bool, String> {
+    match s {
+        "on" => Ok(true),
+        "off" => Ok(false),
+        _ => Err(format!("'{s}': expected on or off")),
+    }
+}
+
+/// `gi.NAME=VALUE` → (NAME, VALUE); the value is checked against the setting later.
+pub fn parse_setting(s: &str) -> Result<(String, String), String> {
+    let (key, value) = s.split_once('=').ok_or_else(|| format!("'{s}' is not gi.NAME=VALUE"))?;
+    let name = key.trim().strip_prefix("gi.").ok_or_else(|| format!("'{key}': only gi.* settings exist"))?;
+    Ok((name.to_owned(), value.trim().to_owned()))
 }
 
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {

@@ -6,9 +6,11 @@ pub mod render_cmd;
 
 use std::path::PathBuf;
 
-/// The render plugins the game runs with.
-pub fn plugins() -> Vec<Box<dyn engine::plugin::Plugin>> {
-    Vec::new()
+/// The render plugins the game runs with, and the handle that tunes the GI live.
+pub fn plugins(gi: plugin_gi::GiSettings) -> (Vec<Box<dyn engine::plugin::Plugin>>, plugin_gi::GiHandle) {
+    let plugin = plugin_gi::GiPlugin::new(gi);
+    let handle = plugin.handle();
+    (vec![Box::new(plugin)], handle)
 }
 
 /// The level `headlamp` plays when none is named: the shipped one beside the executable's

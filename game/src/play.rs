@@ -39,7 +39,8 @@ fn yaw_pitch_of(forward: Vec3) -> (f32, f32) {
 
 impl WindowApp for FreeFly {
     fn init(&mut self, gpu: &Gpu, _format: engine::wgpu::TextureFormat) -> anyhow::Result<()> {
-        self.renderer = Some(Renderer::new(gpu, &self.level.scene, crate::plugins())?);
+        let (plugins, _gi) = crate::plugins(plugin_gi::GiSettings::default());
+        self.renderer = Some(Renderer::new(gpu, &self.level.scene, plugins)?);
         Ok(())
     }
 

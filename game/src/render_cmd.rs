@@ -10,9 +10,11 @@ use crate::cli::RenderArgs;
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let kind = engine::output::kind_for_path(&args.out)?;
+    let gi = args.gi_settings().map_err(|e| anyhow!("--set {e}"))?;
     let level = engine::scene::load_level(&args.level)?;
     let gpu = Gpu::headless()?;
-    let mut renderer = Renderer::new(&gpu, &level.scene, crate::plugins())?;
+    let (plugins, _gi) = crate::plugins(gi);
+    let mut renderer = Renderer::new(&gpu, &level.scene, plugins)?;
     renderer.set_view(&args.view).map_err(|e| anyhow!("--view: {e}"))?;
     let overrides = ViewOverrides { look: args.camera, fov_y: args.fov.map(f32::to_radians) };
     let view = initial_view(&level, &overrides);

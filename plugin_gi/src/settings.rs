@@ -15,7 +15,9 @@ pub struct GiSettings {
     pub merge_normal_deg: f32,
     /// …and their positions within this fraction of their distance from the lamp.
     pub merge_distance: f32,
-    /// Irradiance (W/m²) below which a reflection light is ignored: sizes its light volume.
+    /// A reflection light's volume ends where its irradiance falls below this fraction of
+    /// E_ref = Φ_total/(π d̄²), the irradiance all the reflected flux gives at the mean distance
+    /// from the lamp. Relative, so it means the same in any scene and at any light count.
     pub cutoff: f32,
     /// Minimum distance (m) in the 1/d² of a reflection light, against the point-light singularity.
     pub d_min: f32,
@@ -32,7 +34,7 @@ impl Default for GiSettings {
             light_budget: 1024,
             merge_normal_deg: 25.0,
             merge_distance: 0.15,
-            cutoff: 0.002,
+            cutoff: 1e-4,
             d_min: 0.1,
             bounces: 1,
             resolution_scale: 0.5,
@@ -60,7 +62,7 @@ impl GiSettings {
         field("light_budget", 16.0, 65536.0, true, "target number of reflection lights per bounce"),
         field("merge_normal_deg", 0.0, 90.0, false, "max normal deviation (degrees) for texels to merge"),
         field("merge_distance", 0.0, 2.0, false, "max position deviation, as a fraction of distance to the lamp"),
-        field("cutoff", 1e-6, 10.0, false, "irradiance (W/m²) where a light's volume ends"),
+        field("cutoff", 1e-7, 1.0, false, "where a light's volume ends, relative to the scene's mean irradiance"),
         field("d_min", 0.001, 2.0, false, "minimum distance (m) in a reflection light's 1/d²"),
         field("bounces", 1.0, 3.0, true, "number of light bounces"),
         field("resolution_scale", 0.125, 1.0, false, "indirect target size relative to the view"),

@@ -18,7 +18,7 @@ use crate::frame::Frame;
 use crate::gpu::Gpu;
 
 /// What one pass reads, creates and writes; filled in by [`RenderPass::declare`].
-#[derive(Default, Debug, Clone)]
+#[derive(Default, Debug, Clone, PartialEq)]
 pub struct PassDecl {
     pub(crate) reads: Vec<String>,
     pub(crate) creates: Vec<(String, ResourceDesc)>,
@@ -48,8 +48,8 @@ impl PassDecl {
     }
 }
 
-/// One node of the graph. `declare` must be cheap and may change between frames only when the
-/// owner calls [`RenderGraph::invalidate`] (e.g. when the displayed view changes).
+/// One node of the graph. `declare` is called every frame and must be cheap; it may change
+/// (with settings, the displayed view, the lamp mode) and the graph re-schedules when it does.
 pub trait RenderPass {
     fn name(&self) -> &str;
     fn declare(&self, decl: &mut PassDecl);
@@ -125,6 +125,8 @@ pub struct RenderGraph {
     passes: Vec<Box<dyn RenderPass>>,
     imports: Vec<String>,
     compiled: Option<CompiledGraph>,
+    /// The declarations `compiled` was built from.
+    declared: Vec<(String, PassDecl)>,
     pool: ResourcePool,
     allocated_for: Option<(u32, u32)>,
 }
@@ -155,23 +157,22 @@ impl RenderGraph {
         self.passes.iter().map(|p| p.name().to_owned()).collect()
     }
 
-    pub fn pass_mut(&mut self, name: &str) -> Option<&mut Box<dyn RenderPass>> {
-        self.passes.iter_mut().find(|p| p.name() == name)
-    }
-
     /// Orders, culls and checks the graph; errors name the pass and resource at fault.
+    /// Re-schedules only when some pass's declaration changed since the last call.
     pub fn compile(&mut self) -> Result<&CompiledGraph, GraphError> {
-        if self.compiled.is_none() {
-            let decls: Vec<(String, PassDecl)> = self
-                .passes
-                .iter()
-                .map(|p| {
-                    let mut d = PassDecl::default();
-                    p.declare(&mut d);
-                    (p.name().to_owned(), d)
-                })
-                .collect();
+        let decls: Vec<(String, PassDecl)> = self
+            .passes
+            .iter()
+            .map(|p| {
+                let mut d = PassDecl::default();
+                p.declare(&mut d);
+                (p.name().to_owned(), d)
+            })
+            .collect();
+        if self.compiled.is_none() || decls != self.declared {
+            self.compiled = None;
             self.compiled = Some(CompiledGraph::compile(&decls, &self.imports)?);
+            self.declared = decls;
             self.allocated_for = None;
         }
         Ok(self.compiled.as_ref().expect("just compiled"))
@@ -199,6 +200,10 @@ impl RenderGraph {
 
     pub fn physical_texture(&self, name: &str) -> Option<&wgpu::Texture> {
         Some(self.pool.texture(self.physical_slot(name)?))
+    }
+
+    pub fn physical_buffer(&self, name: &str) -> Option<&wgpu::Buffer> {
+        Some(self.pool.buffer(self.physical_slot(name)?))
     }
 
     /// Records every scheduled pass into `encoder`.

@@ -7,6 +7,18 @@ pub enum SizeRule {
     Fixed(u32, u32),
 }
 
+impl SizeRule {
+    /// The size in pixels for a view of `view` pixels (never 0).
+    pub fn resolve(&self, view: (u32, u32)) -> (u32, u32) {
+        match *self {
+            SizeRule::ViewScaled(s) => {
+                (((view.0 as f32 * s).round() as u32).max(1), ((view.1 as f32 * s).round() as u32).max(1))
+            }
+            SizeRule::Fixed(w, h) => (w.max(1), h.max(1)),
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TextureDesc {
     pub format: wgpu::TextureFormat,
@@ -16,12 +28,14 @@ pub struct TextureDesc {
 }
 
 impl TextureDesc {
-    /// A full-resolution render target that later passes sample.
+    /// A full-resolution render target that later passes sample (and tests can read back).
     pub fn target(format: wgpu::TextureFormat) -> Self {
         Self {
             format,
             size: SizeRule::ViewScaled(1.0),
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
             mip_levels: 1,
         }
     }
@@ -43,12 +57,7 @@ impl TextureDesc {
     }
 
     pub(crate) fn resolve(&self, view: (u32, u32)) -> ResolvedTexture {
-        let (width, height) = match self.size {
-            SizeRule::ViewScaled(s) => {
-                (((view.0 as f32 * s).round() as u32).max(1), ((view.1 as f32 * s).round() as u32).max(1))
-            }
-            SizeRule::Fixed(w, h) => (w.max(1), h.max(1)),
-        };
+        let (width, height) = self.size.resolve(view);
         ResolvedTexture { format: self.format, width, height, usage: self.usage, mip_levels: self.mip_levels }
     }
 }

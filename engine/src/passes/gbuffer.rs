@@ -9,7 +9,9 @@ use crate::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
 
 pub const SHADER: &str = include_str!("../../../shaders/gbuffer.wgsl");
 
-pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Half floats, not 8-bit sRGB: the albedo enters every radiometric result, and hardware sRGB
+/// decoding differs between GPUs by up to ~0.7 % in darks.
+pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 pub const POSITION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 

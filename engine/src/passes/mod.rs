@@ -14,7 +14,7 @@ pub use present::{OutputView, PresentPass, PresentSettings};
 
 /// Names of the graph resources the core passes create; plugins read and write them by name.
 pub mod names {
-    /// Linear diffuse albedo ρ (Rgba8UnormSrgb).
+    /// Linear diffuse albedo ρ (Rgba16Float).
     pub const GBUFFER_ALBEDO: &str = "gbuffer.albedo";
     /// World-space unit normal, facing the camera; w = 1 where there is geometry (Rgba16Float).
     pub const GBUFFER_NORMAL: &str = "gbuffer.normal";

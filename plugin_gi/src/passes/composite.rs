@@ -1,0 +1,123 @@
+//! Geometry-aware upsampling of the irradiance, L_i = ρ/π · E, added to the frame's HDR radiance.
+//! With the GI off it only clears the `indirect` view, and nothing upstream runs.
+
+use std::rc::Rc;
+
+use engine::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
+use engine::passes::names::{GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION, HDR};
+use engine::passes::{color_pass, HDR_FORMAT};
+use engine::wgpu;
+
+use super::shade::ADDITIVE;
+use crate::bindings::{bind, layout, Resource as R, Slot as S};
+use crate::gpu_types::names;
+use crate::shared::{GiHandle, GpuShared};
+
+pub const SHADER: &str = include_str!("../../../shaders/gi/composite.wgsl");
+
+pub struct CompositePass {
+    handle: GiHandle,
+    gpu: Rc<GpuShared>,
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl CompositePass {
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        globals: &wgpu::BindGroupLayout,
+        handle: GiHandle,
+        gpu: Rc<GpuShared>,
+    ) -> Self {
+        let layout = layout(device, "gi composite", &[S::Uniform, S::Texture, S::Texture, S::Texture, S::Texture]);
+        let module = super::module(device, "gi composite", SHADER);
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gi composite"),
+            bind_group_layouts: &[Some(globals), Some(&layout)],
+            immediate_size: 0,
+        });
+        let target =
+            |blend| Some(wgpu::ColorTargetState { format: HDR_FORMAT, blend, write_mask: wgpu::ColorWrites::ALL });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("gi composite"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[target(None), target(Some(ADDITIVE))],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Self { handle, gpu, layout, pipeline }
+    }
+}
+
+impl RenderPass for CompositePass {
+    fn name(&self) -> &str {
+        "gi_composite"
+    }
+
+    fn declare(&self, d: &mut PassDecl) {
+        d.create_texture(names::INDIRECT, TextureDesc::target(HDR_FORMAT));
+        if self.handle.settings().enabled {
+            d.read(names::IRRADIANCE).read(GBUFFER_ALBEDO).read(GBUFFER_NORMAL).read(GBUFFER_POSITION).write(HDR);
+        }
+    }
+
+    fn run(&mut self, ctx: &mut PassContext<'_>) {
+        let enabled = self.handle.settings().enabled;
+        if !enabled {
+            color_pass(ctx.encoder, "gi off", ctx.view(names::INDIRECT), false);
+            self.handle.0.borrow_mut().stats.draws = 0;
+            return;
+        }
+        let group = bind(
+            &ctx.gpu.device,
+            &self.layout,
+            &[
+                R::Buffer(&self.gpu.params),
+                R::View(ctx.view(names::IRRADIANCE)),
+                R::View(ctx.view(GBUFFER_ALBEDO)),
+                R::View(ctx.view(GBUFFER_NORMAL)),
+                R::View(ctx.view(GBUFFER_POSITION)),
+            ],
+        );
+        let attachment = |view| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
+            })
+        };
+        let mut indirect = attachment(ctx.view(names::INDIRECT));
+        if let Some(a) = &mut indirect {
+            a.ops.load = wgpu::LoadOp::Clear(wgpu::Color::BLACK);
+        }
+        let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("gi composite"),
+            color_attachments: &[indirect, attachment(ctx.view(HDR))],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, ctx.frame.globals, &[]);
+        pass.set_bind_group(1, &group, &[]);
+        pass.draw(0..3, 0..1);
+        // The shading pass's indirect draw and this one.
+        self.handle.0.borrow_mut().stats.draws = 2;
+    }
+}

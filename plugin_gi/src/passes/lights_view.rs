@@ -1,0 +1,80 @@
+//! The `lights` view: the frame, dimmed, with a dot per reflection light coloured by its level.
+
+use engine::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
+use engine::passes::color_pass;
+use engine::passes::names::HDR;
+use engine::wgpu;
+
+use crate::bindings::{bind, layout, Resource as R, Slot as S};
+use crate::gpu_types::names;
+
+pub const SHADER: &str = include_str!("../../../shaders/gi/lights_view.wgsl");
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+
+pub struct LightsViewPass {
+    layout: wgpu::BindGroupLayout,
+    frame: wgpu::RenderPipeline,
+    dots: wgpu::RenderPipeline,
+}
+
+impl LightsViewPass {
+    pub(crate) fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout) -> Self {
+        let layout = layout(device, "gi lights view", &[S::Storage { read_only: true }, S::Texture]);
+        let module = super::module(device, "gi lights view", SHADER);
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gi lights view"),
+            bind_group_layouts: &[Some(globals), Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |vs: &str, fs: &str| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("gi lights view"),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: None,
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &[Some(FORMAT.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        Self { frame: pipeline("vs_frame", "fs_frame"), dots: pipeline("vs_dot", "fs_dot"), layout }
+    }
+}
+
+impl RenderPass for LightsViewPass {
+    fn name(&self) -> &str {
+        "gi_lights_view"
+    }
+
+    fn declare(&self, d: &mut PassDecl) {
+        d.read(names::LIGHTS)
+            .read(names::DRAW_ARGS)
+            .read(HDR)
+            .create_texture(names::LIGHTS_VIEW, TextureDesc::target(FORMAT));
+    }
+
+    fn run(&mut self, ctx: &mut PassContext<'_>) {
+        let group =
+            bind(&ctx.gpu.device, &self.layout, &[R::Buffer(ctx.buffer(names::LIGHTS)), R::View(ctx.view(HDR))]);
+        let args = ctx.buffer(names::DRAW_ARGS);
+        let mut pass = color_pass(ctx.encoder, "gi lights view", ctx.view(names::LIGHTS_VIEW), false);
+        pass.set_bind_group(0, ctx.frame.globals, &[]);
+        pass.set_bind_group(1, &group, &[]);
+        pass.set_pipeline(&self.frame);
+        pass.draw(0..3, 0..1);
+        pass.set_pipeline(&self.dots);
+        pass.draw_indirect(args, 0);
+    }
+}

@@ -1,0 +1,79 @@
+//! The brute-force reference: every flux texel a light, no merging, no cutoff (the `reference`
+//! view). Culled by the graph unless something shows or reads it.
+
+use std::rc::Rc;
+
+use engine::graph::{PassContext, PassDecl, RenderPass, SizeRule, TextureDesc};
+use engine::passes::names::{GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION};
+use engine::wgpu;
+
+use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
+use crate::gpu_types::names;
+use crate::shared::GpuShared;
+
+pub const SHADER: &str = include_str!("../../../shaders/gi/reference.wgsl");
+
+pub struct ReferencePass {
+    gpu: Rc<GpuShared>,
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl ReferencePass {
+    pub(crate) fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, gpu: Rc<GpuShared>) -> Self {
+        let mut slots = vec![S::Uniform];
+        slots.extend([S::Texture; 6]);
+        slots.push(S::StorageTexture(wgpu::TextureFormat::Rgba32Float));
+        let layout = layout(device, "gi reference", &slots);
+        let module = super::module(device, "gi reference", SHADER);
+        let pipeline = compute_pipeline(device, "gi reference", &module, "main", &[Some(globals), Some(&layout)]);
+        Self { gpu, layout, pipeline }
+    }
+}
+
+impl RenderPass for ReferencePass {
+    fn name(&self) -> &str {
+        "gi_reference"
+    }
+
+    fn declare(&self, d: &mut PassDecl) {
+        let usage =
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
+        let desc = TextureDesc {
+            format: wgpu::TextureFormat::Rgba32Float,
+            size: SizeRule::ViewScaled(1.0),
+            usage,
+            mip_levels: 1,
+        };
+        d.read(names::FLUX)
+            .read(GBUFFER_ALBEDO)
+            .read(GBUFFER_NORMAL)
+            .read(GBUFFER_POSITION)
+            .create_texture(names::REFERENCE, desc);
+    }
+
+    fn run(&mut self, ctx: &mut PassContext<'_>) {
+        let group = bind(
+            &ctx.gpu.device,
+            &self.layout,
+            &[
+                R::Buffer(&self.gpu.params),
+                R::View(ctx.view(names::FLUX)),
+                R::View(ctx.view(GBUFFER_POSITION)),
+                R::View(ctx.view(GBUFFER_NORMAL)),
+                R::View(ctx.view(GBUFFER_ALBEDO)),
+                R::View(ctx.view(GBUFFER_NORMAL)),
+                R::View(ctx.view(GBUFFER_POSITION)),
+                R::View(ctx.view(names::REFERENCE)),
+            ],
+        );
+        let (w, h) = ctx.frame.size;
+        let mut pass = ctx
+            .encoder
+            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi reference"), timestamp_writes: None });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, ctx.frame.globals, &[]);
+        pass.set_bind_group(1, &group, &[]);
+        pass.dispatch_workgroups((w * h).div_ceil(64), 1, 1);
+    }
+}

@@ -1,0 +1,55 @@
+//! State shared by the GI passes and the game: settings in, figures out.
+
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use engine::wgpu;
+
+use crate::gpu_types::GiParams;
+use crate::settings::GiSettings;
+
+/// Per-frame figures of the GI (constant per frame whatever the light count, except `slots`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GiStats {
+    /// Entries of the distribution table: the lights before refinement.
+    pub slots: u32,
+    /// Size of the instance buffer.
+    pub light_capacity: u32,
+    /// Compute dispatches the GI issued last frame.
+    pub dispatches: u32,
+    /// Draw calls the GI issued last frame (instanced / indirect).
+    pub draws: u32,
+}
+
+/// The game's handle on the plugin: change settings live, read the last frame's figures.
+#[derive(Clone, Default)]
+pub struct GiHandle(pub(crate) Rc<RefCell<Shared>>);
+
+#[derive(Default)]
+pub(crate) struct Shared {
+    pub settings: GiSettings,
+    pub stats: GiStats,
+}
+
+impl GiHandle {
+    pub fn settings(&self) -> GiSettings {
+        self.0.borrow().settings.clone()
+    }
+    pub fn set_settings(&self, settings: GiSettings) {
+        self.0.borrow_mut().settings = settings;
+    }
+    pub fn stats(&self) -> GiStats {
+        self.0.borrow().stats
+    }
+}
+
+/// GPU objects every GI pass binds: the per-frame parameters.
+pub(crate) struct GpuShared {
+    pub params: wgpu::Buffer,
+}
+
+impl GpuShared {
+    pub fn write_params(&self, queue: &wgpu::Queue, params: &GiParams) {
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(params));
+    }
+}

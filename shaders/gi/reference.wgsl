@@ -1,0 +1,70 @@
+// GI brute-force reference: every texel of the full-resolution flux G-buffer is a reflection
+// light, with no merging and no cutoff; the indirect radiance ρ/π · E of each camera pixel is
+// summed over all of them. O(pixels × texels): for tests and `bench` at small sizes.
+#include "common.wgsl"
+#include "gi_common.wgsl"
+
+@group(1) @binding(0) var<uniform> params: GiParams;
+// The lights: flux, position and normal of each lamp-view texel.
+@group(1) @binding(1) var light_flux: texture_2d<f32>;
+@group(1) @binding(2) var light_position: texture_2d<f32>;
+@group(1) @binding(3) var light_normal: texture_2d<f32>;
+// The receivers: the camera G-buffer.
+@group(1) @binding(4) var gbuffer_albedo: texture_2d<f32>;
+@group(1) @binding(5) var gbuffer_normal: texture_2d<f32>;
+@group(1) @binding(6) var gbuffer_position: texture_2d<f32>;
+@group(1) @binding(7) var reference_out: texture_storage_2d<rgba32float, write>;
+
+struct Emitter {
+    position: vec3f,
+    lit: f32,
+    normal: vec3f,
+    pad: f32,
+    flux: vec3f,
+    pad2: f32,
+};
+
+const TILE: u32 = 64u;
+var<workgroup> tile: array<Emitter, 64>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+    let size = textureDimensions(gbuffer_normal);
+    let pixel = vec2u(id.x % size.x, id.x / size.x);
+    let in_view = id.x < size.x * size.y;
+    var normal = vec4f(0.0);
+    var x = vec3f(0.0);
+    if in_view {
+        normal = textureLoad(gbuffer_normal, vec2i(pixel), 0);
+        x = textureLoad(gbuffer_position, vec2i(pixel), 0).xyz;
+    }
+    var e = vec3f(0.0);
+    let count = params.flux_size.x * params.flux_size.y;
+    for (var start = 0u; start < count; start += TILE) {
+        workgroupBarrier();
+        var emitter: Emitter;
+        let k = start + local;
+        if k < count {
+            let t = vec2i(vec2u(k % params.flux_size.x, k / params.flux_size.x));
+            emitter.flux = textureLoad(light_flux, t, 0).rgb;
+            emitter.position = textureLoad(light_position, t, 0).xyz;
+            let n = textureLoad(light_normal, t, 0);
+            emitter.normal = n.xyz;
+            emitter.lit = select(0.0, 1.0, n.w > 0.0 && any(emitter.flux > vec3f(0.0)));
+        }
+        tile[local] = emitter;
+        workgroupBarrier();
+        if in_view && normal.w > 0.0 {
+            for (var i = 0u; i < TILE; i++) {
+                let l = tile[i];
+                if l.lit > 0.0 {
+                    e += reflection_irradiance(l.flux, l.position, l.normal, x, normal.xyz, params.d_min);
+                }
+            }
+        }
+    }
+    if in_view {
+        let rho = textureLoad(gbuffer_albedo, vec2i(pixel), 0).rgb;
+        textureStore(reference_out, vec2i(pixel), vec4f(rho / PI * e, 1.0));
+    }
+}
