@@ -33,7 +33,8 @@ pub struct GiParams {
     pub merge_distance: f32,
     pub cutoff: f32,
     pub d_min: f32,
-    pub pad: f32,
+    /// 0: flux from the lamp; 1: flux from the previous bounce's irradiance.
+    pub source: u32,
 }
 
 /// A reflection light as the GPU builds it: a Lambertian emitter I_r(ω) = Φ/π · max(0, n·ω).

@@ -10,6 +10,7 @@
 mod bindings;
 pub mod distribution_table;
 mod gpu_types;
+mod light_builder;
 mod passes;
 pub mod quadtree;
 pub mod readback;
@@ -56,6 +57,7 @@ impl Plugin for GiPlugin {
         });
         ctx.add_pass(passes::LightsPass::new(device, globals, self.handle.clone(), gpu.clone()));
         ctx.add_pass(passes::ShadePass::new(ctx.gpu, globals, self.handle.clone(), gpu.clone()));
+        ctx.add_pass(passes::BouncePass::new(ctx.gpu, globals, self.handle.clone()));
         ctx.add_pass(passes::CompositePass::new(device, globals, self.handle.clone(), gpu.clone()));
         ctx.add_pass(passes::LightsViewPass::new(device, globals));
         ctx.add_pass(passes::ReferencePass::new(device, globals, gpu));

@@ -8,7 +8,8 @@ use engine::wgpu;
 use crate::gpu_types::GiParams;
 use crate::settings::GiSettings;
 
-/// Per-frame figures of the GI (constant per frame whatever the light count, except `slots`).
+/// Per-frame figures of the GI. Draws and dispatches depend on the resolution and the number
+/// of bounces, never on the light count.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct GiStats {
     /// Entries of the distribution table: the lights before refinement.

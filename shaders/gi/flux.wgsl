@@ -1,6 +1,8 @@
 // GI flux pass: turns the lamp-view G-buffer into reflected flux per texel,
 // Φ = ρ · I(ω) · Ω_texel, and writes level 0 of the node quadtree. Attached, the lamp view
 // is the camera view, so the camera G-buffer is read directly (the article's key economy).
+// For further bounces the source is the previous bounce's irradiance instead:
+// Φ = ρ · E · A_texel, A_texel = Ω_texel · d² / cos θ being the surface area the texel covers.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -11,6 +13,11 @@
 @group(1) @binding(4) var<storage, read_write> nodes: array<Node>;
 @group(1) @binding(5) var flux_out: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(6) var flux_view_out: texture_storage_2d<rgba16float, write>;
+// The previous bounce's irradiance (only read when params.source == 1).
+@group(1) @binding(7) var previous_irradiance: texture_2d<f32>;
+
+// Grazing texels cover unbounded area; past this cosine their area is clamped.
+const MIN_COS: f32 = 0.1;
 
 // Solid angle of texel t seen from the lamp: the texel's area in the tangent plane at unit
 // distance, times cos³ of its angle from the axis.
@@ -37,11 +44,20 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     if normal.w > 0.0 {
         let x = textureLoad(gbuffer_position, t, 0).xyz;
         let rho = textureLoad(gbuffer_albedo, t, 0).rgb;
-        var intensity = vec3f(0.0);
-        if globals.lamp_pos.w > 0.5 {
-            intensity = lamp_intensity_towards(x);
+        if params.source == 0u {
+            var intensity = vec3f(0.0);
+            if globals.lamp_pos.w > 0.5 {
+                intensity = lamp_intensity_towards(x);
+            }
+            flux = rho * intensity * omega;
+        } else {
+            let to_lamp = globals.lamp_pos.xyz - x;
+            let d2 = dot(to_lamp, to_lamp);
+            let cos_theta = max(dot(normal.xyz, to_lamp * inverseSqrt(d2)), MIN_COS);
+            let low = vec2u(vec2f(id.xy) * vec2f(params.indirect_size) / vec2f(params.flux_size));
+            let e = textureLoad(previous_irradiance, vec2i(low), 0).rgb;
+            flux = rho * e * omega * d2 / cos_theta;
         }
-        flux = rho * intensity * omega;
         node.position = x;
         node.normal = normal.xyz;
         node.dist = length(x - globals.lamp_pos.xyz);

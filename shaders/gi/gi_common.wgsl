@@ -41,7 +41,8 @@ struct GiParams {
     merge_distance: f32,
     cutoff: f32,
     d_min: f32,
-    pad: f32,
+    // 0: flux from the lamp, Φ = ρ·I·Ω; 1: flux from the previous bounce, Φ = ρ·E·A.
+    source: u32,
 };
 
 fn luminance(c: vec3f) -> f32 {

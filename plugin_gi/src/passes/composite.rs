@@ -79,7 +79,7 @@ impl RenderPass for CompositePass {
         let enabled = self.handle.settings().enabled;
         if !enabled {
             color_pass(ctx.encoder, "gi off", ctx.view(names::INDIRECT), false);
-            self.handle.0.borrow_mut().stats.draws = 0;
+            self.handle.0.borrow_mut().stats = Default::default();
             return;
         }
         let group = bind(
@@ -118,6 +118,6 @@ impl RenderPass for CompositePass {
         pass.set_bind_group(1, &group, &[]);
         pass.draw(0..3, 0..1);
         // The shading pass's indirect draw and this one.
-        self.handle.0.borrow_mut().stats.draws = 2;
+        self.handle.0.borrow_mut().stats.draws += 2;
     }
 }

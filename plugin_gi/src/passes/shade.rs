@@ -27,24 +27,18 @@ pub const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
     },
 };
 
-pub struct ShadePass {
+/// Draws reflection lights as instanced volumes, adding their irradiance into a target.
+pub struct VolumeShader {
     /// f32 where the device can blend into it: thousands of small contributions are summed.
-    format: wgpu::TextureFormat,
-    handle: GiHandle,
-    gpu: Rc<GpuShared>,
+    pub format: wgpu::TextureFormat,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::RenderPipeline,
 }
 
-impl ShadePass {
-    pub(crate) fn new(
-        gpu_ctx: &engine::gpu::Gpu,
-        globals: &wgpu::BindGroupLayout,
-        handle: GiHandle,
-        gpu: Rc<GpuShared>,
-    ) -> Self {
-        let device = &gpu_ctx.device;
-        let format = if gpu_ctx.float32_blendable() { wgpu::TextureFormat::Rgba32Float } else { HDR_FORMAT };
+impl VolumeShader {
+    pub fn new(gpu: &engine::gpu::Gpu, globals: &wgpu::BindGroupLayout) -> Self {
+        let device = &gpu.device;
+        let format = if gpu.float32_blendable() { wgpu::TextureFormat::Rgba32Float } else { HDR_FORMAT };
         let layout = layout(device, "gi shade", &[S::Uniform, S::Storage { read_only: true }, S::Texture, S::Texture]);
         let module = super::module(device, "gi shade", SHADER);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -79,7 +73,46 @@ impl ShadePass {
             multiview_mask: None,
             cache: None,
         });
-        Self { format, handle, gpu, layout, pipeline }
+        Self { format, layout, pipeline }
+    }
+
+    /// Clears `target` and draws the lights of `args` into it (one indirect draw).
+    #[allow(clippy::too_many_arguments)]
+    pub fn record(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        globals: &wgpu::BindGroup,
+        params: &wgpu::Buffer,
+        lights: &wgpu::Buffer,
+        args: &wgpu::Buffer,
+        gbuffer: (&wgpu::TextureView, &wgpu::TextureView),
+        target: &wgpu::TextureView,
+    ) {
+        let group =
+            bind(device, &self.layout, &[R::Buffer(params), R::Buffer(lights), R::View(gbuffer.0), R::View(gbuffer.1)]);
+        let mut pass = color_pass(encoder, "gi shade", target, false);
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, globals, &[]);
+        pass.set_bind_group(1, &group, &[]);
+        pass.draw_indirect(args, 0);
+    }
+}
+
+pub struct ShadePass {
+    handle: GiHandle,
+    gpu: Rc<GpuShared>,
+    shader: VolumeShader,
+}
+
+impl ShadePass {
+    pub(crate) fn new(
+        gpu_ctx: &engine::gpu::Gpu,
+        globals: &wgpu::BindGroupLayout,
+        handle: GiHandle,
+        gpu: Rc<GpuShared>,
+    ) -> Self {
+        Self { shader: VolumeShader::new(gpu_ctx, globals), handle, gpu }
     }
 }
 
@@ -94,25 +127,19 @@ impl RenderPass for ShadePass {
             .read(names::DRAW_ARGS)
             .read(GBUFFER_NORMAL)
             .read(GBUFFER_POSITION)
-            .create_texture(names::IRRADIANCE, TextureDesc::target(self.format).scaled(scale));
+            .create_texture(names::IRRADIANCE, TextureDesc::target(self.shader.format).scaled(scale));
     }
 
     fn run(&mut self, ctx: &mut PassContext<'_>) {
-        let group = bind(
+        self.shader.record(
             &ctx.gpu.device,
-            &self.layout,
-            &[
-                R::Buffer(&self.gpu.params),
-                R::Buffer(ctx.buffer(names::LIGHTS)),
-                R::View(ctx.view(GBUFFER_NORMAL)),
-                R::View(ctx.view(GBUFFER_POSITION)),
-            ],
+            ctx.encoder,
+            ctx.frame.globals,
+            &self.gpu.params,
+            ctx.buffer(names::LIGHTS),
+            ctx.buffer(names::DRAW_ARGS),
+            (ctx.view(GBUFFER_NORMAL), ctx.view(GBUFFER_POSITION)),
+            ctx.view(names::IRRADIANCE),
         );
-        let args = ctx.buffer(names::DRAW_ARGS);
-        let mut pass = color_pass(ctx.encoder, "gi shade", ctx.view(names::IRRADIANCE), false);
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, ctx.frame.globals, &[]);
-        pass.set_bind_group(1, &group, &[]);
-        pass.draw_indirect(args, 0);
     }
 }
