@@ -110,7 +110,7 @@ impl LightBuilder {
 
     /// Sizes the quadtree and (re)builds the distribution table when what it depends on changed.
     pub fn prepare(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, key: TableKey) {
-        if !self.sized.as_ref().is_some_and(|s| s.size == key.size) {
+        if self.sized.as_ref().is_none_or(|s| s.size != key.size) {
             self.sized = Some(self.sized_state(device, queue, key.size));
         }
         if self.table.as_ref().is_some_and(|(k, _, _)| *k == key) {
