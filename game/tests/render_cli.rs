@@ -165,3 +165,96 @@ fn bad_input_gives_one_clear_line() {
         &["/nonexistent-dir/x.png"],
     );
 }
+
+/// A Cornell box (open towards +Z) as OBJ + MTL, written the way a modelling tool would.
+fn write_cornell_obj(dir: &Path) -> PathBuf {
+    std::fs::write(
+        dir.join("box.mtl"),
+        "newmtl white\nKd 0.75 0.75 0.75\nnewmtl red\nKd 0.75 0.1 0.1\nnewmtl green\nKd 0.1 0.7 0.1\n",
+    )
+    .unwrap();
+    let obj = "mtllib box.mtl\n\
+        v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\n\
+        v -1 2 1\nv 1 2 1\nv 1 2 -1\nv -1 2 -1\n\
+        v 0.1 0 0\nv 0.6 0 0\nv 0.6 0.6 0\nv 0.1 0.6 0\nv 0.1 0.6 -0.5\nv 0.6 0.6 -0.5\n\
+        usemtl white\nf 1 2 3 4\nf 8 7 6 5\nf 4 3 7 8\nf 9 10 11 12\nf 12 11 14 13\n\
+        usemtl red\nf 1 4 8 5\n\
+        usemtl green\nf 3 2 6 7\n";
+    let path = dir.join("cornell.obj");
+    std::fs::write(&path, obj).unwrap();
+    path
+}
+
+fn render_exr(level: &Path, out: &Path, view: &str, extra: &[&str]) -> image::Rgb32FImage {
+    let mut args = vec!["render", "--level", level.to_str().unwrap(), "--out", out.to_str().unwrap()];
+    args.extend(["--size", "96x72", "--view", view, "--camera", "0,1,3.4:0,1,0", "--fov", "50"]);
+    args.extend(extra);
+    let out_status = headlamp(&args);
+    assert_ok(&out_status);
+    image::open(out).unwrap().into_rgb32f()
+}
+
+/// Relative L2 error of 8×8-block means.
+fn block_error(test: &image::Rgb32FImage, reference: &image::Rgb32FImage) -> f64 {
+    let (w, h) = reference.dimensions();
+    let (mut num, mut den) = (0.0f64, 0.0f64);
+    for by in 0..h / 8 {
+        for bx in 0..w / 8 {
+            for c in 0..3 {
+                let block = |img: &image::Rgb32FImage| -> f64 {
+                    (by * 8..by * 8 + 8)
+                        .flat_map(|y| (bx * 8..bx * 8 + 8).map(move |x| (x, y)))
+                        .map(|(x, y)| img.get_pixel(x, y)[c] as f64)
+                        .sum()
+                };
+                let (t, r) = (block(test), block(reference));
+                num += (t - r).powi(2);
+                den += r * r;
+            }
+        }
+    }
+    (num / den).sqrt()
+}
+
+#[test]
+fn indirect_exr_of_an_unseen_obj_cornell_box_matches_the_brute_force_reference() {
+    let dir = scratch("cornell");
+    let obj = write_cornell_obj(&dir);
+    let indirect = render_exr(&obj, &dir.join("indirect.exr"), "indirect", &[]);
+    let reference = render_exr(&obj, &dir.join("reference.exr"), "reference", &[]);
+    let total: f64 = reference.pixels().map(|p| p[0] as f64).sum();
+    assert!(total > 0.0, "the reference must see indirect light");
+    let error = block_error(&indirect, &reference);
+    assert!(error <= 0.10, "indirect differs from the brute-force reference by {error:.3}");
+}
+
+#[test]
+fn gi_flags_switch_and_tune_the_indirect_light() {
+    let dir = scratch("giflags");
+    let obj = write_cornell_obj(&dir);
+    let direct = render_exr(&obj, &dir.join("direct.exr"), "direct", &[]);
+    let off = render_exr(&obj, &dir.join("off.exr"), "final", &["--gi", "off"]);
+    let on = render_exr(&obj, &dir.join("on.exr"), "final", &["--set", "gi.light_budget=256", "--set", "gi.bounces=2"]);
+    let sum = |img: &image::Rgb32FImage| img.pixels().map(|p| p[0] as f64 + p[1] as f64 + p[2] as f64).sum::<f64>();
+    assert!((sum(&off) - sum(&direct)).abs() <= 1e-6 * sum(&direct), "--gi off leaves the direct light alone");
+    assert!(sum(&on) > 1.05 * sum(&off), "the GI adds light: on {} off {}", sum(&on), sum(&off));
+}
+
+#[test]
+fn bad_gi_flags_give_one_clear_line() {
+    let dir = scratch("badgi");
+    let out = dir.join("x.png");
+    let out = out.to_str().unwrap();
+    let good = khronos("Box.gltf");
+    assert_one_line_error(
+        &["render", "--level", &good, "--out", out, "--set", "gi.light_budget=lots"],
+        &["gi.light_budget", "lots"],
+    );
+    assert_one_line_error(
+        &["render", "--level", &good, "--out", out, "--set", "gi.bounces=9"],
+        &["gi.bounces", "out of range"],
+    );
+    assert_one_line_error(&["render", "--level", &good, "--out", out, "--set", "gi.colour=1"], &["gi.colour"]);
+    assert_one_line_error(&["render", "--level", &good, "--out", out, "--set", "budget=1"], &["budget"]);
+    assert_one_line_error(&["render", "--level", &good, "--out", out, "--gi", "maybe"], &["maybe"]);
+}
