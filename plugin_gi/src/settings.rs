@@ -34,7 +34,7 @@ impl Default for GiSettings {
             light_budget: 1024,
             merge_normal_deg: 25.0,
             merge_distance: 0.15,
-            cutoff: 1e-4,
+            cutoff: 1e-3,
             d_min: 0.1,
             bounces: 1,
             resolution_scale: 0.5,

@@ -20,7 +20,8 @@ struct Node {
 // A reflection light: I_r(ω) = Φ/π · max(0, n_r·ω).
 struct ReflectionLight {
     position: vec3f,
-    // Radius of the light volume: beyond it the irradiance is below the cutoff.
+    // Distance along the normal at which the irradiance falls to the cutoff; the light's
+    // volume encloses the region where it is above.
     radius: f32,
     normal: vec3f,
     // The mip level it came from (0 = one texel).

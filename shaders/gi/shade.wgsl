@@ -24,6 +24,11 @@ const ICO_INDICES = array<u32, 60>(
 );
 // Scales the unit-circumradius icosahedron so its inscribed sphere has radius 1.
 const INSCRIBED: f32 = 1.2584;
+// A Lambertian emitter's cutoff surface, r(θ) = R·√cos θ, lies in front of it and inside the
+// sphere centred R/2 along its normal with radius √(4/27 + 1/4)·R (the worst case is at
+// cos θ = 4/9): a quarter of the volume of the sphere of radius R around the light.
+const VOLUME_OFFSET: f32 = 0.5;
+const VOLUME_RADIUS: f32 = 0.6311;
 
 struct VolumeOut {
     @builtin(position) clip: vec4f,
@@ -33,9 +38,10 @@ struct VolumeOut {
 @vertex
 fn vs_main(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VolumeOut {
     let light = reflection_lights[i];
-    let corner = normalize(ICO_VERTICES[ICO_INDICES[v]]) * INSCRIBED * light.radius;
+    let corner = normalize(ICO_VERTICES[ICO_INDICES[v]]) * INSCRIBED * VOLUME_RADIUS * light.radius;
+    let centre = light.position + light.normal * (VOLUME_OFFSET * light.radius);
     var out: VolumeOut;
-    out.clip = globals.view_proj * vec4f(light.position + corner, 1.0);
+    out.clip = globals.view_proj * vec4f(centre + corner, 1.0);
     out.light = i;
     return out;
 }
