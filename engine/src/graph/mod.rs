@@ -17,15 +17,36 @@ pub use resource::{BufferDesc, ResourceDesc, SizeRule, TextureDesc};
 use crate::frame::Frame;
 use crate::gpu::Gpu;
 
+/// What declarations may depend on besides a pass's own settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeclareContext {
+    /// The headlamp sits at the camera (its view is the camera's G-buffer).
+    pub lamp_attached: bool,
+}
+
+impl Default for DeclareContext {
+    fn default() -> Self {
+        Self { lamp_attached: true }
+    }
+}
+
 /// What one pass reads, creates and writes; filled in by [`RenderPass::declare`].
 #[derive(Default, Debug, Clone, PartialEq)]
 pub struct PassDecl {
+    context: DeclareContext,
     pub(crate) reads: Vec<String>,
     pub(crate) creates: Vec<(String, ResourceDesc)>,
     pub(crate) writes: Vec<String>,
 }
 
 impl PassDecl {
+    pub fn new(context: DeclareContext) -> Self {
+        Self { context, ..Self::default() }
+    }
+    /// The frame state declarations may depend on.
+    pub fn context(&self) -> DeclareContext {
+        self.context
+    }
     /// Samples or loads `name`; runs after everything that creates or writes it.
     pub fn read(&mut self, name: &str) -> &mut Self {
         self.reads.push(name.to_owned());
@@ -49,7 +70,8 @@ impl PassDecl {
 }
 
 /// One node of the graph. `declare` is called every frame and must be cheap; it may change
-/// (with settings, the displayed view, the lamp mode) and the graph re-schedules when it does.
+/// (with settings, the displayed view, [`PassDecl::context`]) and the graph re-schedules
+/// when it does.
 pub trait RenderPass {
     fn name(&self) -> &str;
     fn declare(&self, decl: &mut PassDecl);
@@ -127,6 +149,8 @@ pub struct RenderGraph {
     compiled: Option<CompiledGraph>,
     /// The declarations `compiled` was built from.
     declared: Vec<(String, PassDecl)>,
+    /// The context of the frame being scheduled.
+    context: DeclareContext,
     pool: ResourcePool,
     allocated_for: Option<(u32, u32)>,
 }
@@ -164,7 +188,7 @@ impl RenderGraph {
             .passes
             .iter()
             .map(|p| {
-                let mut d = PassDecl::default();
+                let mut d = PassDecl::new(self.context);
                 p.declare(&mut d);
                 (p.name().to_owned(), d)
             })
@@ -214,6 +238,7 @@ impl RenderGraph {
         encoder: &mut wgpu::CommandEncoder,
         imports: &[ImportedTexture<'_>],
     ) -> Result<(), GraphError> {
+        self.context = DeclareContext { lamp_attached: frame.view.headlamp.attached };
         self.allocate(gpu, frame.size)?;
         let compiled = self.compiled.as_ref().expect("allocated above");
         let table = ResourceTable { compiled, pool: &self.pool, imports };
