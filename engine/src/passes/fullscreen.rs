@@ -42,29 +42,40 @@ pub fn fullscreen_pipeline(
     format: wgpu::TextureFormat,
     blend: Option<wgpu::BlendState>,
 ) -> wgpu::RenderPipeline {
+    let targets = [Some(wgpu::ColorTargetState { format, blend, write_mask: wgpu::ColorWrites::ALL })];
+    procedural_pipeline(device, label, module, ("vs_main", "fs_main"), layouts, &targets, Default::default())
+}
+
+/// A render pipeline whose vertices come from the shader alone (full-screen triangles,
+/// instanced volumes read from storage buffers): no vertex buffers and no depth.
+pub fn procedural_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    (vertex, fragment): (&str, &str),
+    layouts: &[Option<&wgpu::BindGroupLayout>],
+    targets: &[Option<wgpu::ColorTargetState>],
+    primitive: wgpu::PrimitiveState,
+) -> wgpu::RenderPipeline {
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
         bind_group_layouts: layouts,
         immediate_size: 0,
     });
+    let compilation_options = wgpu::PipelineCompilationOptions::default();
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(label),
         layout: Some(&layout),
         vertex: wgpu::VertexState {
             module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
+            entry_point: Some(vertex),
+            compilation_options: compilation_options.clone(),
             buffers: &[],
         },
-        primitive: wgpu::PrimitiveState::default(),
+        primitive,
         depth_stencil: None,
         multisample: wgpu::MultisampleState::default(),
-        fragment: Some(wgpu::FragmentState {
-            module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState { format, blend, write_mask: wgpu::ColorWrites::ALL })],
-        }),
+        fragment: Some(wgpu::FragmentState { module, entry_point: Some(fragment), compilation_options, targets }),
         multiview_mask: None,
         cache: None,
     })

@@ -8,7 +8,7 @@ mod present;
 
 pub use composite::CompositePass;
 pub use direct_light::DirectLightPass;
-pub use fullscreen::{bind_textures, color_pass, fullscreen_pipeline, textures_layout};
+pub use fullscreen::{bind_textures, color_pass, fullscreen_pipeline, procedural_pipeline, textures_layout};
 pub use gbuffer::GBufferPass;
 pub use present::{OutputView, PresentPass, PresentSettings};
 

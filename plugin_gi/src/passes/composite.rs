@@ -5,7 +5,7 @@ use std::rc::Rc;
 
 use engine::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
 use engine::passes::names::{GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION, HDR};
-use engine::passes::{color_pass, HDR_FORMAT};
+use engine::passes::{color_pass, procedural_pipeline, HDR_FORMAT};
 use engine::wgpu;
 
 use super::shade::ADDITIVE;
@@ -31,34 +31,12 @@ impl CompositePass {
     ) -> Self {
         let layout = layout(device, "gi composite", &[S::Uniform, S::Texture, S::Texture, S::Texture, S::Texture]);
         let module = super::module(device, "gi composite", SHADER);
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gi composite"),
-            bind_group_layouts: &[Some(globals), Some(&layout)],
-            immediate_size: 0,
-        });
         let target =
             |blend| Some(wgpu::ColorTargetState { format: HDR_FORMAT, blend, write_mask: wgpu::ColorWrites::ALL });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("gi composite"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[target(None), target(Some(ADDITIVE))],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let (layouts, targets) = ([Some(globals), Some(&layout)], [target(None), target(Some(ADDITIVE))]);
+        let entries = ("vs_main", "fs_main");
+        let pipeline =
+            procedural_pipeline(device, "gi composite", &module, entries, &layouts, &targets, Default::default());
         Self { handle, gpu, layout, pipeline }
     }
 }

@@ -1,8 +1,8 @@
 //! The `lights` view: the frame, dimmed, with a dot per reflection light coloured by its level.
 
 use engine::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
-use engine::passes::color_pass;
 use engine::passes::names::HDR;
+use engine::passes::{color_pass, procedural_pipeline};
 use engine::wgpu;
 
 use crate::bindings::{bind, layout, Resource as R, Slot as S};
@@ -21,33 +21,9 @@ impl LightsViewPass {
     pub(crate) fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout) -> Self {
         let layout = layout(device, "gi lights view", &[S::Storage { read_only: true }, S::Texture]);
         let module = super::module(device, "gi lights view", SHADER);
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gi lights view"),
-            bind_group_layouts: &[Some(globals), Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = |vs: &str, fs: &str| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("gi lights view"),
-                layout: Some(&pipeline_layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some(vs),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: None,
-                multisample: wgpu::MultisampleState::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(fs),
-                    compilation_options: Default::default(),
-                    targets: &[Some(FORMAT.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+        let (layouts, targets) = ([Some(globals), Some(&layout)], [Some(FORMAT.into())]);
+        let pipeline = |vs, fs| {
+            procedural_pipeline(device, "gi lights view", &module, (vs, fs), &layouts, &targets, Default::default())
         };
         Self { frame: pipeline("vs_frame", "fs_frame"), dots: pipeline("vs_dot", "fs_dot"), layout }
     }

@@ -4,7 +4,7 @@ use std::rc::Rc;
 
 use engine::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
 use engine::passes::names::{GBUFFER_NORMAL, GBUFFER_POSITION};
-use engine::passes::{color_pass, HDR_FORMAT};
+use engine::passes::{color_pass, procedural_pipeline, HDR_FORMAT};
 use engine::wgpu;
 
 use crate::bindings::{bind, layout, Resource as R, Slot as S};
@@ -41,38 +41,20 @@ impl VolumeShader {
         let format = if gpu.float32_blendable() { wgpu::TextureFormat::Rgba32Float } else { HDR_FORMAT };
         let layout = layout(device, "gi shade", &[S::Uniform, S::Storage { read_only: true }, S::Texture, S::Texture]);
         let module = super::module(device, "gi shade", SHADER);
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gi shade"),
-            bind_group_layouts: &[Some(globals), Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("gi shade"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            // Back faces only, no depth test: each covered pixel is shaded once per light, also
-            // when the camera is inside the volume.
-            primitive: wgpu::PrimitiveState { cull_mode: Some(wgpu::Face::Front), ..Default::default() },
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: Some(ADDITIVE),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let target = wgpu::ColorTargetState { format, blend: Some(ADDITIVE), write_mask: wgpu::ColorWrites::ALL };
+        // Back faces only, no depth test: each covered pixel is shaded once per light, also
+        // when the camera is inside the volume.
+        let primitive = wgpu::PrimitiveState { cull_mode: Some(wgpu::Face::Front), ..Default::default() };
+        let layouts = [Some(globals), Some(&layout)];
+        let pipeline = procedural_pipeline(
+            device,
+            "gi shade",
+            &module,
+            ("vs_main", "fs_main"),
+            &layouts,
+            &[Some(target)],
+            primitive,
+        );
         Self { format, layout, pipeline }
     }
 
