@@ -16,7 +16,9 @@ struct Globals {
     lamp_intensity: vec4f,
     // width, height, 1/width, 1/height of the view.
     viewport: vec4f,
-    // x: exposure; y: number of punctual lights.
+    // x: exposure; y: number of punctual lights; z: 1 when the headlamp is detached (its shadow
+    // map `lamp.depth` is valid); w: size of a lamp-map texel per metre of distance from the
+    // lamp, 2·tan(fov/2)/LAMP_MAP_SIZE (0 when attached).
     params: vec4f,
 };
 

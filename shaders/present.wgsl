@@ -24,7 +24,10 @@ fn linear_to_srgb(c: vec3f) -> vec3f {
 
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
-    let value = textureLoad(source, vec2i(in.position.xy), 0);
+    // Sources of another size than the output (the fixed-size lamp maps) are scaled to fit,
+    // nearest texel; same-sized ones map texel to pixel.
+    let scale = vec2f(textureDimensions(source)) * globals.viewport.zw;
+    let value = textureLoad(source, vec2i(in.position.xy * scale), 0);
     let view = params.mode.x;
     if params.mode.y == 1u {
         // Linear: radiance, albedo, the unit normal, or depth in metres as stored.

@@ -197,6 +197,13 @@ impl GlobalsGpu {
         let aspect = size.0 as f32 / size.1.max(1) as f32;
         let view_proj = view.camera.view_projection(aspect);
         let lamp_on = if view.headlamp.on { 1.0 } else { 0.0 };
+        // Detached: the direct light pass tests `lamp.depth`, whose texels cover
+        // 2·tan(fov/2)/LAMP_MAP_SIZE metres per metre of distance from the lamp.
+        let (detached, lamp_texel) = if view.headlamp.attached {
+            (0.0, 0.0)
+        } else {
+            (1.0, 2.0 * (lamp.fov_y * 0.5).tan() / crate::passes::LAMP_MAP_SIZE as f32)
+        };
         let uniform = GlobalsUniform {
             view_proj,
             inv_view_proj: view_proj.inverse(),
@@ -206,7 +213,7 @@ impl GlobalsGpu {
             lamp_pos: lamp.position.extend(lamp_on),
             lamp_intensity: view.headlamp.intensity().extend(0.0),
             viewport: Vec4::new(size.0 as f32, size.1 as f32, 1.0 / size.0 as f32, 1.0 / size.1 as f32),
-            params: Vec4::new(view.exposure, view.lights.len() as f32, 0.0, 0.0),
+            params: Vec4::new(view.exposure, view.lights.len() as f32, detached, lamp_texel),
         };
         gpu.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
         if !view.lights.is_empty() {

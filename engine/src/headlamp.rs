@@ -4,7 +4,7 @@
 use glam::{Mat4, Quat, Vec3};
 use scene::{HeadlampProfile, IntensityDistribution};
 
-use crate::camera::{Camera, CameraProjection};
+use crate::camera::{rotation_looking, Camera, CameraProjection};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Headlamp {
@@ -42,6 +42,13 @@ impl Headlamp {
         self.attached = false;
         self.position = camera.position;
         self.rotation = camera.rotation;
+    }
+
+    /// Puts the lamp down at `eye`, pointing at `target` (+Y up where possible).
+    pub fn detach_looking_at(&mut self, eye: Vec3, target: Vec3) {
+        self.attached = false;
+        self.position = eye;
+        self.rotation = rotation_looking((target - eye).try_normalize().unwrap_or(Vec3::NEG_Z));
     }
 
     pub fn frustum(&self, camera: &Camera, view_aspect: f32) -> LampFrustum {

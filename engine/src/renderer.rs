@@ -11,7 +11,9 @@ use crate::globals::{CoreLayouts, GlobalsGpu};
 use crate::gpu::Gpu;
 use crate::gpu_scene::GpuScene;
 use crate::graph::{GraphError, ImportedTexture, RenderGraph};
-use crate::passes::{names, CompositePass, DirectLightPass, GBufferPass, OutputView, PresentPass, PresentSettings};
+use crate::passes::{
+    names, CompositePass, DirectLightPass, GBufferPass, LampViewPass, OutputView, PresentPass, PresentSettings,
+};
 use crate::plugin::{Plugin, PluginContext, ViewEntry};
 
 pub struct Renderer {
@@ -34,6 +36,9 @@ impl Renderer {
         let mut graph = RenderGraph::new();
         graph.import(names::OUTPUT);
         graph.add_pass(Box::new(GBufferPass::new(gpu, &layouts)));
+        // Declares the same resources whether the lamp is attached or not (it records nothing
+        // while attached), so putting the lamp down or picking it up never recompiles the graph.
+        graph.add_pass(Box::new(LampViewPass::new(gpu, &layouts)));
         graph.add_pass(Box::new(DirectLightPass::new(gpu, &layouts)));
         graph.add_pass(Box::new(CompositePass::new(gpu, &layouts)));
         graph.add_pass(Box::new(PresentPass::new(gpu, &layouts, present.clone())));
@@ -45,6 +50,10 @@ impl Renderer {
             view("albedo", names::GBUFFER_ALBEDO, OutputView::Color),
             view("normal", names::GBUFFER_NORMAL, OutputView::Normal),
             view("depth", names::GBUFFER_POSITION, OutputView::Depth),
+            // The detached lamp's own G-buffer, scaled to the output (black while attached).
+            view("lamp_albedo", names::LAMP_ALBEDO, OutputView::Color),
+            view("lamp_normal", names::LAMP_NORMAL, OutputView::Normal),
+            view("lamp_depth", names::LAMP_POSITION, OutputView::Depth),
         ];
         for plugin in &mut plugins {
             let mut ctx = PluginContext { gpu, layouts: &layouts, graph: &mut graph, views: &mut views };

@@ -46,8 +46,11 @@ pub struct RenderArgs {
     #[arg(long, default_value = "final")]
     pub view: String,
     /// Camera eye and target: EX,EY,EZ:TX,TY,TZ (metres).
-    #[arg(long, value_parser = parse_camera)]
+    #[arg(long, value_parser = parse_camera, allow_hyphen_values = true)]
     pub camera: Option<(Vec3, Vec3)>,
+    /// Detach the headlamp: put it at EX,EY,EZ pointing at TX,TY,TZ (metres) [default: on the camera].
+    #[arg(long, value_parser = parse_camera, allow_hyphen_values = true)]
+    pub lamp: Option<(Vec3, Vec3)>,
     /// Vertical field of view of both camera and headlamp, in degrees.
     #[arg(long, value_parser = parse_fov)]
     pub fov: Option<f32>,

@@ -70,6 +70,14 @@ impl WindowApp for FreeFly {
         if input.pressed(KeyCode::KeyF) {
             self.view.headlamp.on = !self.view.headlamp.on;
         }
+        // G puts the lamp down where the camera is, looking where it looks, or picks it up.
+        if input.pressed(KeyCode::KeyG) {
+            if self.view.headlamp.attached {
+                self.view.headlamp.detach_at(&self.view.camera);
+            } else {
+                self.view.headlamp.attached = true;
+            }
+        }
     }
 
     fn render(

@@ -17,7 +17,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let mut renderer = Renderer::new(&gpu, &level.scene, plugins)?;
     renderer.set_view(&args.view).map_err(|e| anyhow!("--view: {e}"))?;
     let overrides = ViewOverrides { look: args.camera, fov_y: args.fov.map(f32::to_radians) };
-    let view = initial_view(&level, &overrides);
+    let mut view = initial_view(&level, &overrides);
+    if let Some((eye, target)) = args.lamp {
+        view.headlamp.detach_looking_at(eye, target);
+    }
     let target = HeadlessTarget::new(&gpu, args.size.0, args.size.1, kind);
     let image = target.render(&gpu, &mut renderer, &view)?;
     engine::output::save(&image, &args.out)?;

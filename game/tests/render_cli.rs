@@ -91,6 +91,42 @@ fn exr_of_a_bare_gltf_reads_rho_over_pi_d_squared() {
 }
 
 #[test]
+fn a_lamp_put_down_with_lamp_keeps_the_radiometry() {
+    let dir = scratch("lamp");
+    let (d, rho) = (3.0f32, 0.6f32);
+    let gltf = dir.join("plane.gltf");
+    write_plane_gltf(&gltf, -d, rho);
+    let exr = dir.join("direct.exr");
+    // Negative coordinates need no '=': the value starts with '-'.
+    let lamp_x = -0.5f32;
+    let out = headlamp(&[
+        "render",
+        "--level",
+        gltf.to_str().unwrap(),
+        "--out",
+        exr.to_str().unwrap(),
+        "--size",
+        "64x64",
+        "--view",
+        "direct",
+        "--camera",
+        "0,0,0:0,0,-1",
+        "--lamp",
+        "-0.5,0,0:-0.5,0,-1",
+        "--fov",
+        "50",
+    ]);
+    assert_ok(&out);
+    let img = image::open(&exr).unwrap().into_rgb32f();
+    let centre: f32 =
+        [(31, 31), (32, 31), (31, 32), (32, 32)].iter().map(|&(x, y)| img.get_pixel(x, y)[0]).sum::<f32>() / 4.0;
+    // The centre sees (0, 0, -d); the lamp is off to the side: ρ/π · cos / r².
+    let r2 = lamp_x * lamp_x + d * d;
+    let want = rho / PI * (d / r2.sqrt()) / r2;
+    assert!((centre - want).abs() / want < 0.01, "centre radiance {centre}, expected {want}");
+}
+
+#[test]
 fn renders_the_khronos_conformance_files_from_their_own_cameras() {
     let dir = scratch("khronos");
     for file in ["Box.gltf", "Cameras.gltf"] {
@@ -157,6 +193,14 @@ fn bad_input_gives_one_clear_line() {
     let good = khronos("Box.gltf");
     assert_one_line_error(&["render", "--level", &good, "--out", out, "--size", "big"], &["big"]);
     assert_one_line_error(&["render", "--level", &good, "--out", out, "--camera", "1,2:3"], &["1,2:3"]);
+    assert_one_line_error(
+        &["render", "--level", &good, "--out", out, "--lamp", "1,2,x:3,4,5"],
+        &["--lamp", "1,2,x:3,4,5"],
+    );
+    assert_one_line_error(
+        &["render", "--level", &good, "--out", out, "--lamp", "1,1,1:1,1,1"],
+        &["--lamp", "same point"],
+    );
     assert_one_line_error(&["render", "--level", &good, "--out", "x.bmp"], &["x.bmp"]);
     assert_one_line_error(&["render", "--level", &good, "--out", out, "--view", "sideways"], &["sideways"]);
     assert_one_line_error(&["render", "--level", &good, "--out", out, "--bogus"], &["--bogus"]);

@@ -1,9 +1,10 @@
 //! Direct radiance from the headlamp and the punctual lights, evaluated per G-buffer texel.
+//! A detached headlamp is shadowed by its own depth map, `lamp.depth` (see lamp_view.rs).
 
-use super::fullscreen::{bind_textures, color_pass, fullscreen_pipeline, textures_layout};
+use super::fullscreen::{color_pass, fullscreen_pipeline};
 use super::names::*;
 use super::HDR_FORMAT;
-use crate::globals::CoreLayouts;
+use crate::globals::{texture_entry, CoreLayouts};
 use crate::gpu::Gpu;
 use crate::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
 
@@ -12,13 +13,39 @@ pub const SHADER: &str = include_str!("../../../shaders/direct_light.wgsl");
 pub struct DirectLightPass {
     pipeline: wgpu::RenderPipeline,
     inputs: wgpu::BindGroupLayout,
+    /// Bilinear depth comparison for percentage-closer filtering of `lamp.depth`.
+    shadow_sampler: wgpu::Sampler,
 }
 
 impl DirectLightPass {
     pub fn new(gpu: &Gpu, layouts: &CoreLayouts) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "direct light", SHADER, &[]);
-        let inputs = textures_layout(device, "direct light inputs", 3, false);
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let inputs = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("direct light inputs"),
+            entries: &[
+                texture_entry(0, fragment, false),
+                texture_entry(1, fragment, false),
+                texture_entry(2, fragment, false),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: fragment,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 4,
+                    visibility: fragment,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                    count: None,
+                },
+            ],
+        });
         let pipeline = fullscreen_pipeline(
             device,
             "direct light",
@@ -27,7 +54,15 @@ impl DirectLightPass {
             HDR_FORMAT,
             None,
         );
-        Self { pipeline, inputs }
+        // Reversed Z: the receiver is lit where its depth is at least the stored one.
+        let shadow_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("lamp shadow"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            compare: Some(wgpu::CompareFunction::GreaterEqual),
+            ..Default::default()
+        });
+        Self { pipeline, inputs, shadow_sampler }
     }
 }
 
@@ -37,15 +72,31 @@ impl RenderPass for DirectLightPass {
     }
 
     fn declare(&self, d: &mut PassDecl) {
+        // `lamp.depth` is read in both modes so the graph does not change when the lamp is
+        // picked up or put down; attached, the shader never samples it.
         d.read(GBUFFER_ALBEDO)
             .read(GBUFFER_NORMAL)
             .read(GBUFFER_POSITION)
+            .read(LAMP_DEPTH)
             .create_texture(DIRECT, TextureDesc::target(HDR_FORMAT));
     }
 
     fn run(&mut self, ctx: &mut PassContext<'_>) {
-        let views = [ctx.view(GBUFFER_ALBEDO), ctx.view(GBUFFER_NORMAL), ctx.view(GBUFFER_POSITION)];
-        let inputs = bind_textures(&ctx.gpu.device, &self.inputs, &views, None);
+        let texture = |binding: u32, name: &str| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(ctx.view(name)),
+        };
+        let inputs = ctx.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("direct light inputs"),
+            layout: &self.inputs,
+            entries: &[
+                texture(0, GBUFFER_ALBEDO),
+                texture(1, GBUFFER_NORMAL),
+                texture(2, GBUFFER_POSITION),
+                texture(3, LAMP_DEPTH),
+                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::Sampler(&self.shadow_sampler) },
+            ],
+        });
         let target = ctx.view(DIRECT);
         let mut pass = color_pass(ctx.encoder, "direct light", target, false);
         pass.set_pipeline(&self.pipeline);

@@ -1,15 +1,18 @@
-//! The engine's core passes: G-buffer → direct light → composite → [plugins] → present.
+//! The engine's core passes: G-buffer (+ lamp view when the headlamp is detached) → direct
+//! light → composite → [plugins] → present.
 
 mod composite;
 mod direct_light;
 mod fullscreen;
 mod gbuffer;
+mod lamp_view;
 mod present;
 
 pub use composite::CompositePass;
 pub use direct_light::DirectLightPass;
 pub use fullscreen::{bind_textures, color_pass, fullscreen_pipeline, procedural_pipeline, textures_layout};
 pub use gbuffer::GBufferPass;
+pub use lamp_view::{LampViewPass, LAMP_MAP_SIZE};
 pub use present::{OutputView, PresentPass, PresentSettings};
 
 /// Names of the graph resources the core passes create; plugins read and write them by name.
@@ -24,6 +27,18 @@ pub mod names {
     pub const GBUFFER_EMISSIVE: &str = "gbuffer.emissive";
     /// Reversed depth buffer (Depth32Float).
     pub const GBUFFER_DEPTH: &str = "gbuffer.depth";
+    /// The lamp's view (a reflective shadow map), [`super::LAMP_MAP_SIZE`]² texels, rendered
+    /// only while the headlamp is detached. While it is attached these hold nothing meaningful
+    /// and the `gbuffer.*` textures above are the lamp's view (same formats and meanings, the
+    /// camera being the lamp). Linear diffuse albedo ρ (Rgba8UnormSrgb).
+    pub const LAMP_ALBEDO: &str = "lamp.albedo";
+    /// World-space unit normal facing the lamp; w = 1 where there is geometry (Rgba16Float).
+    pub const LAMP_NORMAL: &str = "lamp.normal";
+    /// World-space position; w = distance along the lamp's view axis in metres, 0 where
+    /// empty (Rgba32Float).
+    pub const LAMP_POSITION: &str = "lamp.position";
+    /// Reversed depth from the lamp, cleared to 0 (Depth32Float): the headlamp's shadow map.
+    pub const LAMP_DEPTH: &str = "lamp.depth";
     /// Direct radiance from the headlamp and punctual lights (Rgba16Float).
     pub const DIRECT: &str = "direct";
     /// The frame's linear radiance; plugins blend additively into it (Rgba16Float).
@@ -37,6 +52,7 @@ pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Every WGSL file of the core passes, for tests that validate them.
 pub const SHADERS: &[(&str, &str)] = &[
     ("gbuffer.wgsl", gbuffer::SHADER),
+    ("lamp_view.wgsl", lamp_view::SHADER),
     ("direct_light.wgsl", direct_light::SHADER),
     ("composite.wgsl", composite::SHADER),
     ("present.wgsl", present::SHADER),

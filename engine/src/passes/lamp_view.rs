@@ -1,0 +1,132 @@
+//! The lamp's own G-buffer — a reflective shadow map — rendered from the detached headlamp.
+//!
+//! While the lamp is **detached** this pass rasterises the scene from the lamp frustum
+//! (`Headlamp::frustum`: its own pose, `profile.fov_y`, aspect 1) into `lamp.*`, fixed at
+//! [`LAMP_MAP_SIZE`]². The direct light pass uses `lamp.depth` as the headlamp's shadow map and
+//! the GI plugin takes its reflection lights from `lamp.*`.
+//!
+//! While the lamp is **attached** the camera G-buffer *is* the lamp view (same position, same
+//! frustum, same formats and meanings), so this pass records nothing at all: no render pass,
+//! no draw, no clear. Its declarations do not depend on the mode — the textures stay declared
+//! (and allocated, ~32 MiB) in both modes — so toggling the lamp never recompiles the graph
+//! and consumers bind the same names every frame. Their contents are meaningful only while
+//! detached; attached consumers read `gbuffer.*` instead (see [`super::names`]).
+
+use super::names::*;
+use super::HDR_FORMAT;
+use crate::globals::CoreLayouts;
+use crate::gpu::Gpu;
+use crate::gpu_scene::VERTEX_LAYOUT;
+use crate::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
+
+pub const SHADER: &str = include_str!("../../../shaders/lamp_view.wgsl");
+
+/// Width and height of every `lamp.*` texture, in texels.
+pub const LAMP_MAP_SIZE: u32 = 1024;
+
+pub const LAMP_ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+pub const LAMP_NORMAL_FORMAT: wgpu::TextureFormat = HDR_FORMAT;
+pub const LAMP_POSITION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+pub const LAMP_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// The descriptor of a `lamp.*` texture: fixed size, sampled by later passes, and copyable so
+/// tools and tests can read it back.
+fn lamp_texture(format: wgpu::TextureFormat) -> TextureDesc {
+    TextureDesc::target(format).fixed(LAMP_MAP_SIZE, LAMP_MAP_SIZE).usage(wgpu::TextureUsages::COPY_SRC)
+}
+
+pub struct LampViewPass {
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl LampViewPass {
+    pub fn new(gpu: &Gpu, layouts: &CoreLayouts) -> Self {
+        let device = &gpu.device;
+        let module = crate::shader::module(device, "lamp view", SHADER, &[]);
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("lamp view"),
+            bind_group_layouts: &[Some(&layouts.globals), Some(&layouts.material)],
+            immediate_size: 0,
+        });
+        let target = |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("lamp view"),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(VERTEX_LAYOUT)],
+            },
+            // No culling, as in the camera G-buffer: single-sided walls must still block the
+            // lamp from either side.
+            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+            // Reversed Z like the camera: cleared to 0 (infinitely far), nearer is greater.
+            // No rasteriser depth bias: the shadow test applies its own, in metres.
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: LAMP_DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Greater),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[target(LAMP_ALBEDO_FORMAT), target(LAMP_NORMAL_FORMAT), target(LAMP_POSITION_FORMAT)],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Self { pipeline }
+    }
+}
+
+impl RenderPass for LampViewPass {
+    fn name(&self) -> &str {
+        "lamp_view"
+    }
+
+    fn declare(&self, d: &mut PassDecl) {
+        d.create_texture(LAMP_ALBEDO, lamp_texture(LAMP_ALBEDO_FORMAT))
+            .create_texture(LAMP_NORMAL, lamp_texture(LAMP_NORMAL_FORMAT))
+            .create_texture(LAMP_POSITION, lamp_texture(LAMP_POSITION_FORMAT))
+            .create_texture(LAMP_DEPTH, lamp_texture(LAMP_DEPTH_FORMAT));
+    }
+
+    fn run(&mut self, ctx: &mut PassContext<'_>) {
+        if ctx.frame.view.headlamp.attached {
+            // The camera G-buffer is the lamp view: nothing to do.
+            return;
+        }
+        let attachment = |name: &str| {
+            Some(wgpu::RenderPassColorAttachment {
+                view: ctx.view(name),
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        };
+        let colors = [attachment(LAMP_ALBEDO), attachment(LAMP_NORMAL), attachment(LAMP_POSITION)];
+        let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("lamp view"),
+            color_attachments: &colors,
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: ctx.view(LAMP_DEPTH),
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, ctx.frame.globals, &[]);
+        ctx.frame.scene.draw_all(&mut pass);
+    }
+}
