@@ -24,7 +24,8 @@ pub const SHADER: &str = include_str!("../../../shaders/lamp_view.wgsl");
 /// Width and height of every `lamp.*` texture, in texels.
 pub const LAMP_MAP_SIZE: u32 = 1024;
 
-pub const LAMP_ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Half floats like the camera G-buffer's albedo: hardware sRGB decoding differs between GPUs.
+pub const LAMP_ALBEDO_FORMAT: wgpu::TextureFormat = super::gbuffer::ALBEDO_FORMAT;
 pub const LAMP_NORMAL_FORMAT: wgpu::TextureFormat = HDR_FORMAT;
 pub const LAMP_POSITION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 pub const LAMP_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;

@@ -30,7 +30,7 @@ pub mod names {
     /// The lamp's view (a reflective shadow map), [`super::LAMP_MAP_SIZE`]² texels, rendered
     /// only while the headlamp is detached. While it is attached these hold nothing meaningful
     /// and the `gbuffer.*` textures above are the lamp's view (same formats and meanings, the
-    /// camera being the lamp). Linear diffuse albedo ρ (Rgba8UnormSrgb).
+    /// camera being the lamp). Linear diffuse albedo ρ (Rgba16Float).
     pub const LAMP_ALBEDO: &str = "lamp.albedo";
     /// World-space unit normal facing the lamp; w = 1 where there is geometry (Rgba16Float).
     pub const LAMP_NORMAL: &str = "lamp.normal";

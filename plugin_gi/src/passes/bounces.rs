@@ -113,7 +113,8 @@ impl RenderPass for BouncePass {
 
     fn declare(&self, d: &mut PassDecl) {
         let s = self.handle.settings();
-        if s.enabled && s.bounces >= 2 {
+        // Bounces reuse the camera G-buffer as the lamp view: attached lamp only.
+        if s.enabled && s.bounces >= 2 && d.context().lamp_attached {
             d.read(GBUFFER_ALBEDO).read(GBUFFER_NORMAL).read(GBUFFER_POSITION).write(names::IRRADIANCE);
         }
     }

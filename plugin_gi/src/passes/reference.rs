@@ -7,6 +7,7 @@ use engine::graph::{PassContext, PassDecl, RenderPass, SizeRule, TextureDesc};
 use engine::passes::names::{GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION};
 use engine::wgpu;
 
+use super::lights::lamp_view;
 use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
 use crate::gpu_types::names;
 use crate::shared::GpuShared;
@@ -45,22 +46,21 @@ impl RenderPass for ReferencePass {
             usage,
             mip_levels: 1,
         };
-        d.read(names::FLUX)
-            .read(GBUFFER_ALBEDO)
-            .read(GBUFFER_NORMAL)
-            .read(GBUFFER_POSITION)
-            .create_texture(names::REFERENCE, desc);
+        let lamp = lamp_view(d.context().lamp_attached);
+        d.read(names::FLUX).read(lamp.normal).read(lamp.position);
+        d.read(GBUFFER_ALBEDO).read(GBUFFER_NORMAL).read(GBUFFER_POSITION).create_texture(names::REFERENCE, desc);
     }
 
     fn run(&mut self, ctx: &mut PassContext<'_>) {
+        let lamp = lamp_view(ctx.frame.view.headlamp.attached);
         let group = bind(
             &ctx.gpu.device,
             &self.layout,
             &[
                 R::Buffer(&self.gpu.params),
                 R::View(ctx.view(names::FLUX)),
-                R::View(ctx.view(GBUFFER_POSITION)),
-                R::View(ctx.view(GBUFFER_NORMAL)),
+                R::View(ctx.view(lamp.position)),
+                R::View(ctx.view(lamp.normal)),
                 R::View(ctx.view(GBUFFER_ALBEDO)),
                 R::View(ctx.view(GBUFFER_NORMAL)),
                 R::View(ctx.view(GBUFFER_POSITION)),
