@@ -1,5 +1,5 @@
 //! Headlamp's engine: GPU context, render graph, scene assets, deferred renderer, headless
-//! output and the window loop. It knows nothing of any game.
+//! output, the window loop and its egui UI layer. It knows nothing of any game.
 
 pub mod camera;
 pub mod frame;
@@ -16,8 +16,10 @@ pub mod plugin;
 pub mod renderer;
 pub mod shader;
 pub mod start_view;
+pub mod ui;
 pub mod window;
 
+pub use egui;
 pub use glam;
 pub use scene;
 pub use wgpu;

@@ -1,6 +1,10 @@
-//! The window loop (winit `ApplicationHandler`): owns the surface and GPU, turns events into
-//! [`Input`], and asks the app for a frame. Resizes, minimising to 0×0 and lost or outdated
-//! surfaces are handled here so no app has to.
+//! The window loop (winit `ApplicationHandler`): owns the surface, the GPU and the UI layer,
+//! turns events into [`Input`], and asks the app for a frame. Resizes, minimising to 0×0 and
+//! lost or outdated surfaces are handled here so no app has to.
+//!
+//! The mouse: a click captures it (mouse look), Esc or losing focus releases it. While it is
+//! released, events go to the UI first; a click or key the UI consumed (a click on a UI
+//! window, typing into a text field) neither captures the mouse nor reaches [`Input`].
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -14,6 +18,7 @@ use winit::window::{CursorGrabMode, Window, WindowId};
 
 use crate::gpu::Gpu;
 use crate::input::{Input, MouseButton};
+use crate::ui::UiLayer;
 
 /// What a windowed program provides.
 pub trait WindowApp {
@@ -21,9 +26,17 @@ pub trait WindowApp {
     fn init(&mut self, gpu: &Gpu, format: wgpu::TextureFormat) -> anyhow::Result<()>;
     /// Advances the program by `dt` seconds of wall time.
     fn update(&mut self, input: &Input, dt: f32);
+    /// Polled after every `update`: true releases a captured mouse once (e.g. a menu was just
+    /// opened and should be usable at once).
+    fn release_mouse_requested(&mut self) -> bool {
+        false
+    }
+    /// Builds this frame's UI with egui (after `update`, before `render`); the loop paints it
+    /// over what `render` drew. The default shows nothing.
+    fn ui(&mut self, _ctx: &egui::Context) {}
     /// Draws into the surface texture.
     fn render(&mut self, gpu: &Gpu, target: &wgpu::Texture, view: &wgpu::TextureView) -> anyhow::Result<()>;
-    /// Every raw window event, before the engine's own handling (e.g. for a UI library).
+    /// Every raw window event, before the engine's and the UI's own handling.
     fn window_event(&mut self, _window: &Window, _event: &WindowEvent) {}
     fn wants_exit(&self) -> bool {
         false
@@ -54,6 +67,10 @@ struct WindowState {
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
     gpu: Gpu,
+    ui: UiLayer,
+    /// The format the UI is drawn in: the surface's without sRGB encoding where the adapter can
+    /// view the surface that way (egui blends in gamma space), else the surface's own.
+    ui_format: wgpu::TextureFormat,
 }
 
 struct Runner<A: WindowApp> {
@@ -85,14 +102,23 @@ impl<A: WindowApp> Runner<A> {
             config.format = srgb;
         }
         config.present_mode = wgpu::PresentMode::AutoVsync;
+        let mut ui_format = config.format;
+        let surface_views = gpu.adapter.get_downlevel_capabilities().flags;
+        if config.format.is_srgb() && surface_views.contains(wgpu::DownlevelFlags::SURFACE_VIEW_FORMATS) {
+            ui_format = config.format.remove_srgb_suffix();
+            config.view_formats.push(ui_format);
+        }
         surface.configure(&gpu.device, &config);
         self.app.init(&gpu, config.format)?;
-        self.state = Some(WindowState { window, surface, config, gpu });
+        let ui = UiLayer::new(&gpu, &window, ui_format);
+        self.state = Some(WindowState { window, surface, config, gpu, ui, ui_format });
         Ok(())
     }
 
     fn set_captured(&mut self, captured: bool) {
-        let Some(state) = &self.state else { return };
+        let Some(state) = &mut self.state else { return };
+        log::debug!("mouse {}", if captured { "captured" } else { "released" });
+        state.ui.set_captured(captured);
         if captured {
             let grabbed = state
                 .window
@@ -113,6 +139,9 @@ impl<A: WindowApp> Runner<A> {
         let dt = (now - self.last).as_secs_f32().min(0.25);
         self.last = now;
         self.app.update(&self.input, dt);
+        if self.app.release_mouse_requested() && self.input.captured {
+            self.set_captured(false);
+        }
         self.input.end_frame();
 
         let Some(state) = &mut self.state else { return Ok(()) };
@@ -142,7 +171,12 @@ impl<A: WindowApp> Runner<A> {
             }
         };
         let view = texture.texture.create_view(&wgpu::TextureViewDescriptor::default());
+        state.ui.frame(&state.window, |ctx| self.app.ui(ctx));
         self.app.render(&state.gpu, &texture.texture, &view)?;
+        let ui_view = texture
+            .texture
+            .create_view(&wgpu::TextureViewDescriptor { format: Some(state.ui_format), ..Default::default() });
+        state.ui.paint(&state.gpu, &ui_view, [texture.texture.width(), texture.texture.height()]);
         state.window.pre_present_notify();
         state.gpu.queue.present(texture);
         if suboptimal {
@@ -167,8 +201,10 @@ impl<A: WindowApp> ApplicationHandler for Runner<A> {
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
-        if let Some(state) = &self.state {
+        let mut ui_consumed = false;
+        if let Some(state) = &mut self.state {
             self.app.window_event(&state.window, &event);
+            ui_consumed = state.ui.on_window_event(&state.window, &event);
         }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
@@ -188,6 +224,9 @@ impl<A: WindowApp> ApplicationHandler for Runner<A> {
             WindowEvent::KeyboardInput { event, .. } => {
                 if let PhysicalKey::Code(code) = event.physical_key {
                     let down = event.state == ElementState::Pressed;
+                    if down && ui_consumed {
+                        return; // typed into the UI
+                    }
                     if code == KeyCode::Escape && down && self.input.captured {
                         self.set_captured(false);
                     }
@@ -196,6 +235,9 @@ impl<A: WindowApp> ApplicationHandler for Runner<A> {
             }
             WindowEvent::MouseInput { state, button, .. } => {
                 let down = state == ElementState::Pressed;
+                if down && ui_consumed {
+                    return; // a click on the UI
+                }
                 if down && button == MouseButton::Left && !self.input.captured {
                     self.set_captured(true);
                 } else {

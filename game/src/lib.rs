@@ -3,6 +3,7 @@
 pub mod cli;
 pub mod play;
 pub mod render_cmd;
+pub mod settings_panel;
 
 use std::path::PathBuf;
 

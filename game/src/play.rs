@@ -1,8 +1,11 @@
 //! `headlamp play`: the level in a window with a free-fly camera (the game proper comes later).
+//! F1 toggles the GI settings panel; opening it releases the mouse so its sliders can be used
+//! at once, and a click on the 3D view captures the mouse again (the panel stays open).
 
 use std::path::Path;
 
 use engine::camera::yaw_pitch_rotation;
+use engine::egui;
 use engine::frame::ViewState;
 use engine::gpu::Gpu;
 use engine::input::{Input, KeyCode};
@@ -11,6 +14,9 @@ use engine::scene::Level;
 use engine::start_view::{initial_view, ViewOverrides};
 use engine::window::WindowApp;
 use glam::Vec3;
+use plugin_gi::{GiHandle, GiSettings};
+
+use crate::settings_panel;
 
 /// Radians of view rotation per pixel of mouse motion.
 const MOUSE_SENSITIVITY: f32 = 0.0025;
@@ -20,16 +26,31 @@ pub fn run(level_path: &Path) -> anyhow::Result<()> {
     let level = engine::scene::load_level(level_path)?;
     let view = initial_view(&level, &ViewOverrides::default());
     let (yaw, pitch) = yaw_pitch_of(view.camera.forward());
-    let app = FreeFly { level, view, yaw, pitch, renderer: None };
+    let app = FreeFly {
+        level,
+        view,
+        yaw,
+        pitch,
+        renderer: None,
+        gi_settings: GiSettings::default(),
+        gi: None,
+        panel_open: false,
+        release_mouse: false,
+    };
     engine::window::run("Headlamp", app)
 }
 
-struct FreeFly {
+pub struct FreeFly {
     level: Level,
     view: ViewState,
     yaw: f32,
     pitch: f32,
     renderer: Option<Renderer>,
+    /// The GI settings as the panel (F1) leaves them, pushed to the plugin on every change.
+    pub gi_settings: GiSettings,
+    gi: Option<GiHandle>,
+    panel_open: bool,
+    release_mouse: bool,
 }
 
 fn yaw_pitch_of(forward: Vec3) -> (f32, f32) {
@@ -39,8 +60,9 @@ fn yaw_pitch_of(forward: Vec3) -> (f32, f32) {
 
 impl WindowApp for FreeFly {
     fn init(&mut self, gpu: &Gpu, _format: engine::wgpu::TextureFormat) -> anyhow::Result<()> {
-        let (plugins, _gi) = crate::plugins(plugin_gi::GiSettings::default());
+        let (plugins, gi) = crate::plugins(self.gi_settings.clone());
         self.renderer = Some(Renderer::new(gpu, &self.level.scene, plugins)?);
+        self.gi = Some(gi);
         Ok(())
     }
 
@@ -76,6 +98,24 @@ impl WindowApp for FreeFly {
                 self.view.headlamp.detach_at(&self.view.camera);
             } else {
                 self.view.headlamp.attached = true;
+            }
+        }
+        if input.pressed(KeyCode::F1) {
+            self.panel_open = !self.panel_open;
+            self.release_mouse = self.panel_open;
+        }
+    }
+
+    fn release_mouse_requested(&mut self) -> bool {
+        std::mem::take(&mut self.release_mouse)
+    }
+
+    fn ui(&mut self, ctx: &egui::Context) {
+        settings_panel::hint(ctx);
+        if settings_panel::window(ctx, &mut self.panel_open, &mut self.gi_settings) {
+            // The GI reads its settings every frame: the change shows on the next one.
+            if let Some(gi) = &self.gi {
+                gi.set_settings(self.gi_settings.clone());
             }
         }
     }

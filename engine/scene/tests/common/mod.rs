@@ -69,7 +69,7 @@ pub struct Bin {
 
 impl Bin {
     fn push(&mut self, bytes: &[u8], component: u32, count: usize, ty: &str, extra: Value) -> usize {
-        while self.data.len() % 4 != 0 {
+        while !self.data.len().is_multiple_of(4) {
             self.data.push(0);
         }
         self.views.push(json!({"buffer": 0, "byteOffset": self.data.len(), "byteLength": bytes.len()}));
@@ -113,7 +113,7 @@ impl Bin {
     }
     /// Raw bytes as a bufferView only (for images); returns the view index.
     pub fn view(&mut self, bytes: &[u8]) -> usize {
-        while self.data.len() % 4 != 0 {
+        while !self.data.len().is_multiple_of(4) {
             self.data.push(0);
         }
         self.views.push(json!({"buffer": 0, "byteOffset": self.data.len(), "byteLength": bytes.len()}));
@@ -143,11 +143,11 @@ impl Bin {
 /// A GLB container: header, JSON chunk padded with spaces, BIN chunk padded with zeros.
 pub fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
     let mut j = serde_json::to_vec(json).unwrap();
-    while j.len() % 4 != 0 {
+    while !j.len().is_multiple_of(4) {
         j.push(b' ');
     }
     let mut b = bin.to_vec();
-    while b.len() % 4 != 0 {
+    while !b.len().is_multiple_of(4) {
         b.push(0);
     }
     let total = 12 + 8 + j.len() + 8 + b.len();
