@@ -10,6 +10,7 @@
 mod bindings;
 pub mod distribution_table;
 mod gpu_types;
+pub mod metrics;
 mod passes;
 pub mod quadtree;
 pub mod readback;
