@@ -6,6 +6,7 @@ pub mod frame;
 pub mod globals;
 pub mod gpu;
 pub mod gpu_scene;
+pub mod gpu_timer;
 pub mod graph;
 pub mod headlamp;
 pub mod headless;

@@ -76,6 +76,18 @@ impl Renderer {
         &self.graph
     }
 
+    /// Times each render-graph pass on the GPU from the next frame on (opt-in, for `bench`;
+    /// nothing is recorded while off). Has no effect where [`Gpu::timestamps`] is false.
+    pub fn set_timing(&mut self, on: bool) {
+        self.graph.set_timing(on);
+    }
+
+    /// Each pass of the last timed frame and its GPU time in milliseconds, in execution order.
+    /// None when timing is off or unsupported. Blocks until that frame is done on the GPU.
+    pub fn last_pass_times(&self, gpu: &Gpu) -> Option<Vec<(String, f64)>> {
+        self.graph.last_pass_times(gpu)
+    }
+
     /// Shows view `name` from the next frame on.
     pub fn set_view(&mut self, name: &str) -> Result<(), String> {
         let entry = self.views.iter().find(|v| v.name == name).ok_or_else(|| {

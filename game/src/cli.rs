@@ -22,6 +22,8 @@ pub enum Command {
     Play(PlayArgs),
     /// Render one frame headless (no window, no display) to a PNG or a linear EXR.
     Render(RenderArgs),
+    /// Headless timedemo: per-pass GPU times, frame times, and the GI's figures.
+    Bench(BenchArgs),
 }
 
 #[derive(clap::Args, Debug, Default)]
@@ -65,15 +67,42 @@ pub struct RenderArgs {
 impl RenderArgs {
     /// The GI settings these flags ask for, starting from the defaults.
     pub fn gi_settings(&self) -> Result<plugin_gi::GiSettings, String> {
-        let mut gi = plugin_gi::GiSettings::default();
-        for (name, value) in &self.settings {
-            gi.set(name, value)?;
-        }
-        if let Some(on) = self.gi {
-            gi.enabled = on;
-        }
-        Ok(gi)
+        gi_settings(&self.settings, self.gi)
     }
+}
+
+#[derive(clap::Args, Debug)]
+pub struct BenchArgs {
+    /// A level folder or a bare .gltf/.glb/.obj file.
+    #[arg(long)]
+    pub level: PathBuf,
+    /// Frame size in pixels.
+    #[arg(long, default_value = "640x360", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Timed frames along the camera path.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub frames: u32,
+    /// Also write every figure to this file as JSON.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Indirect light (global illumination) on or off.
+    #[arg(long, value_parser = parse_on_off)]
+    pub gi: Option<bool>,
+    /// A GI setting, e.g. gi.light_budget=2048 (repeatable; see README for the names).
+    #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
+    pub settings: Vec<(String, String)>,
+}
+
+/// The GI settings `--set` and `--gi` ask for, starting from the defaults.
+pub fn gi_settings(settings: &[(String, String)], gi: Option<bool>) -> Result<plugin_gi::GiSettings, String> {
+    let mut out = plugin_gi::GiSettings::default();
+    for (name, value) in settings {
+        out.set(name, value)?;
+    }
+    if let Some(on) = gi {
+        out.enabled = on;
+    }
+    Ok(out)
 }
 
 pub fn parse_on_off(s: &str) -> Result<bool, String> {

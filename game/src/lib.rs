@@ -1,5 +1,6 @@
 //! Headlamp, the game: command line, play loop, and how the engine and the GI plugin are wired.
 
+pub mod bench;
 pub mod cli;
 pub mod play;
 pub mod render_cmd;

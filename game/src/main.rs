@@ -1,4 +1,4 @@
-//! `headlamp`: play (default) or render headless. Errors end the program with one line.
+//! `headlamp`: play (default), render headless, or bench. Errors end the program with one line.
 
 use std::process::ExitCode;
 
@@ -24,6 +24,7 @@ fn main() -> ExitCode {
     let result = match cli.command.unwrap_or(Command::Play(PlayArgs::default())) {
         Command::Play(args) => game::play::run(&args.level.unwrap_or_else(game::default_level)),
         Command::Render(args) => game::render_cmd::run(&args),
+        Command::Bench(args) => game::bench::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -238,28 +238,6 @@ fn render_exr(level: &Path, out: &Path, view: &str, extra: &[&str]) -> image::Rg
     image::open(out).unwrap().into_rgb32f()
 }
 
-/// Relative L2 error of 8×8-block means.
-fn block_error(test: &image::Rgb32FImage, reference: &image::Rgb32FImage) -> f64 {
-    let (w, h) = reference.dimensions();
-    let (mut num, mut den) = (0.0f64, 0.0f64);
-    for by in 0..h / 8 {
-        for bx in 0..w / 8 {
-            for c in 0..3 {
-                let block = |img: &image::Rgb32FImage| -> f64 {
-                    (by * 8..by * 8 + 8)
-                        .flat_map(|y| (bx * 8..bx * 8 + 8).map(move |x| (x, y)))
-                        .map(|(x, y)| img.get_pixel(x, y)[c] as f64)
-                        .sum()
-                };
-                let (t, r) = (block(test), block(reference));
-                num += (t - r).powi(2);
-                den += r * r;
-            }
-        }
-    }
-    (num / den).sqrt()
-}
-
 #[test]
 fn indirect_exr_of_an_unseen_obj_cornell_box_matches_the_brute_force_reference() {
     let dir = scratch("cornell");
@@ -268,7 +246,8 @@ fn indirect_exr_of_an_unseen_obj_cornell_box_matches_the_brute_force_reference()
     let reference = render_exr(&obj, &dir.join("reference.exr"), "reference", &[]);
     let total: f64 = reference.pixels().map(|p| p[0] as f64).sum();
     assert!(total > 0.0, "the reference must see indirect light");
-    let error = block_error(&indirect, &reference);
+    let rgba = |img: &image::Rgb32FImage| image::DynamicImage::ImageRgb32F(img.clone()).into_rgba32f();
+    let error = plugin_gi::metrics::block_error(&rgba(&indirect), &rgba(&reference));
     assert!(error <= 0.10, "indirect differs from the brute-force reference by {error:.3}");
 }
 

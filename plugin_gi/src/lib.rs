@@ -11,6 +11,7 @@ mod bindings;
 pub mod distribution_table;
 mod gpu_types;
 mod light_builder;
+pub mod metrics;
 mod passes;
 pub mod quadtree;
 pub mod readback;

@@ -16,6 +16,7 @@ pub use resource::{BufferDesc, ResourceDesc, SizeRule, TextureDesc};
 
 use crate::frame::Frame;
 use crate::gpu::Gpu;
+use crate::gpu_timer::GpuTimer;
 
 /// What declarations may depend on besides a pass's own settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -153,6 +154,9 @@ pub struct RenderGraph {
     context: DeclareContext,
     pool: ResourcePool,
     allocated_for: Option<(u32, u32)>,
+    /// Whether to time passes; the timer is made on the first timed frame.
+    timing: bool,
+    timer: Option<GpuTimer>,
 }
 
 impl RenderGraph {
@@ -213,8 +217,33 @@ impl RenderGraph {
         Ok(())
     }
 
+    /// Times every scheduled pass on the GPU from the next frame on (when the device can write
+    /// timestamps inside encoders), or stops and forgets the timings.
+    pub fn set_timing(&mut self, on: bool) {
+        self.timing = on;
+        if !on {
+            self.timer = None;
+        }
+    }
+
+    pub fn timing(&self) -> bool {
+        self.timing
+    }
+
+    /// The GPU time of each pass of the last timed frame, in execution order, in milliseconds;
+    /// None when timing is off or unsupported, or before the first timed frame. Blocks until
+    /// that frame has finished on the GPU.
+    pub fn last_pass_times(&self, gpu: &Gpu) -> Option<Vec<(String, f64)>> {
+        self.timer.as_ref()?.read(gpu)
+    }
+
     pub fn pool_stats(&self) -> PoolStats {
         self.pool.stats()
+    }
+
+    /// The schedule of the last compile (see [`CompiledGraph::order_names`]).
+    pub fn compiled(&self) -> Option<&CompiledGraph> {
+        self.compiled.as_ref()
     }
 
     /// The id of the physical resource backing `name` (for tests and debugging).
@@ -242,12 +271,27 @@ impl RenderGraph {
         self.allocate(gpu, frame.size)?;
         let compiled = self.compiled.as_ref().expect("allocated above");
         let table = ResourceTable { compiled, pool: &self.pool, imports };
-        for &index in compiled.order() {
+        let order = compiled.order();
+        if self.timing && self.timer.as_ref().is_none_or(|t| (t.capacity() as usize) < order.len()) {
+            self.timer = GpuTimer::new(gpu, order.len() as u32);
+        }
+        // Disabled timing costs one branch per pass.
+        let timer = if self.timing { self.timer.as_mut() } else { None };
+        for (i, &index) in order.iter().enumerate() {
             let pass = &mut self.passes[index];
+            if let Some(t) = &timer {
+                t.start(encoder, i);
+            }
             encoder.push_debug_group(pass.name());
             let mut ctx = PassContext { gpu, frame, encoder, resources: &table };
             pass.run(&mut ctx);
             encoder.pop_debug_group();
+            if let Some(t) = &timer {
+                t.end(encoder, i);
+            }
+        }
+        if let Some(t) = timer {
+            t.finish(encoder, order.iter().map(|&i| self.passes[i].name().to_owned()).collect());
         }
         Ok(())
     }

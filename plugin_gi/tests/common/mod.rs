@@ -9,6 +9,7 @@ use engine::headlamp::Headlamp;
 use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::renderer::Renderer;
 use engine::scene::{HeadlampProfile, IntensityDistribution, Material, Mesh, Scene, Vertex};
+pub use plugin_gi::metrics::block_error;
 use plugin_gi::{GiHandle, GiPlugin, GiSettings};
 
 pub const FOV_Y: f32 = 50.0 * std::f32::consts::PI / 180.0;
@@ -107,26 +108,4 @@ pub fn render_display(gpu: &Gpu, r: &mut GiRender, view: &ViewState, name: &str,
         RenderedImage::Display(img) => img,
         RenderedImage::Linear(_) => unreachable!(),
     }
-}
-
-/// Relative L2 error of 8×8-block means (all three channels) of `test` against `reference`.
-pub fn block_error(test: &image::Rgba32FImage, reference: &image::Rgba32FImage) -> f64 {
-    let (w, h) = reference.dimensions();
-    let (mut num, mut den) = (0.0f64, 0.0f64);
-    for by in 0..h / 8 {
-        for bx in 0..w / 8 {
-            for c in 0..3 {
-                let (mut t, mut r) = (0.0f64, 0.0f64);
-                for y in by * 8..by * 8 + 8 {
-                    for x in bx * 8..bx * 8 + 8 {
-                        t += test.get_pixel(x, y)[c] as f64;
-                        r += reference.get_pixel(x, y)[c] as f64;
-                    }
-                }
-                num += (t - r).powi(2);
-                den += r.powi(2);
-            }
-        }
-    }
-    (num / den).sqrt()
 }

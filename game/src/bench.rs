@@ -1,0 +1,403 @@
+//! `headlamp bench`: a headless timedemo. The camera follows a fixed, deterministic path; every
+//! frame renders `final` into an offscreen target and waits for the GPU, and the figures are the
+//! GPU time of each render-graph pass (timestamp queries), the whole frame's GPU and CPU time,
+//! and what the GI did: reflection lights, draw and dispatch calls, and its error against the
+//! brute-force reference.
+
+use std::f32::consts::TAU;
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::time::Instant;
+
+use anyhow::{anyhow, Context};
+use engine::camera::Camera;
+use engine::frame::ViewState;
+use engine::glam::{Quat, Vec3};
+use engine::gpu::Gpu;
+use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
+use engine::renderer::Renderer;
+use engine::scene::Level;
+use engine::start_view::{framing_camera, initial_view, ViewOverrides, DEFAULT_FOV_Y};
+use serde::Serialize;
+
+use crate::cli::BenchArgs;
+
+/// Frames rendered before timing starts (pipelines, pools and the GI's distribution table are
+/// built on the first frame).
+const WARMUP_FRAMES: usize = 1;
+/// How far the walk goes from the spawn over the whole run, metres.
+const WALK_M: f32 = 3.0;
+/// Amplitude of the yaw sweep, degrees.
+const SWEEP_DEG: f32 = 60.0;
+/// The GI-vs-reference comparison is rendered at this size: the reference is O(pixels²).
+pub const ERROR_SIZE: (u32, u32) = (160, 90);
+/// At most this many frames are re-rendered, untimed, to read the reflection lights back.
+const LIGHT_SAMPLES: usize = 5;
+
+/// Where the camera is on frame `i` of `n`.
+#[derive(Clone, Debug)]
+pub enum CameraPath {
+    /// From a level's spawn: walk `WALK_M` forward while the yaw sweeps ±`SWEEP_DEG` (one sine
+    /// period over the run).
+    Walk { eye: Vec3, yaw: f32, pitch: f32, fov_y: f32 },
+    /// Without a spawn: one full orbit about the vertical axis through the scene's centre,
+    /// starting from the view that frames the whole scene.
+    Orbit { centre: Vec3, offset: Vec3, fov_y: f32 },
+}
+
+impl CameraPath {
+    pub fn for_level(level: &Level) -> Self {
+        let fov_y = DEFAULT_FOV_Y;
+        if let Some(spawn) = &level.spawn {
+            return CameraPath::Walk { eye: spawn.eye(), yaw: spawn.yaw, pitch: spawn.pitch, fov_y };
+        }
+        let framing = framing_camera(&level.scene, fov_y);
+        let bounds = level.scene.bounds();
+        let centre = if bounds.is_empty() { Vec3::ZERO } else { bounds.center() };
+        CameraPath::Orbit { centre, offset: framing.position - centre, fov_y }
+    }
+
+    pub fn camera(&self, i: usize, n: usize) -> Camera {
+        let t = i as f32 / n.max(1) as f32;
+        match *self {
+            CameraPath::Walk { eye, yaw, pitch, fov_y } => {
+                let ahead = Vec3::new(-yaw.sin(), 0.0, -yaw.cos());
+                let swept = yaw + SWEEP_DEG.to_radians() * (TAU * t).sin();
+                Camera::from_yaw_pitch(eye + ahead * (WALK_M * t), swept, pitch, fov_y)
+            }
+            CameraPath::Orbit { centre, offset, fov_y } => {
+                Camera::look_at(centre + Quat::from_rotation_y(TAU * t) * offset, centre, fov_y)
+            }
+        }
+    }
+
+    pub fn describe(&self) -> String {
+        match self {
+            CameraPath::Walk { .. } => {
+                format!("from the spawn, walk {WALK_M} m forward while the yaw sweeps ±{SWEEP_DEG}° (lamp attached)")
+            }
+            CameraPath::Orbit { .. } => {
+                "one orbit about the scene's centre from the framing view (lamp attached)".to_owned()
+            }
+        }
+    }
+}
+
+#[derive(Serialize, Clone, Copy, Debug)]
+pub struct Spread {
+    pub median: f64,
+    pub p90: f64,
+    pub mean: f64,
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Spread {
+    fn of(values: &[f64]) -> Self {
+        let mut v = values.to_vec();
+        v.sort_by(f64::total_cmp);
+        let mean = v.iter().sum::<f64>() / v.len().max(1) as f64;
+        Spread {
+            median: percentile(&v, 0.5),
+            p90: percentile(&v, 0.9),
+            mean,
+            min: v.first().copied().unwrap_or(f64::NAN),
+            max: v.last().copied().unwrap_or(f64::NAN),
+        }
+    }
+}
+
+/// Linear interpolation between the closest ranks of sorted `v`.
+fn percentile(v: &[f64], p: f64) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    let x = p * (v.len() - 1) as f64;
+    let (lo, hi) = (x.floor() as usize, x.ceil() as usize);
+    v[lo] + (v[hi] - v[lo]) * (x - lo as f64)
+}
+
+#[derive(Serialize, Debug)]
+pub struct PassFigure {
+    pub name: String,
+    /// GPU milliseconds over the timed frames.
+    pub gpu_ms: Spread,
+}
+
+#[derive(Serialize, Debug)]
+pub struct FrameFigure {
+    /// CPU wall time of recording, submitting and waiting for the frame.
+    pub cpu_ms: f64,
+    /// Σ of the pass times, when the device has timestamps.
+    pub gpu_ms: Option<f64>,
+    pub passes: Vec<(String, f64)>,
+}
+
+#[derive(Serialize, Debug)]
+pub struct LightFigure {
+    /// Median reflection-light count over the sampled frames.
+    pub median: f64,
+    /// Which frames were re-rendered (untimed) to read the lights back, and their counts.
+    pub frames: Vec<usize>,
+    pub counts: Vec<usize>,
+}
+
+#[derive(Serialize, Debug)]
+pub struct ErrorFigure {
+    /// The size both views were rendered at (smaller than the benchmark: O(pixels²)).
+    pub size: [u32; 2],
+    /// Which frame's camera.
+    pub frame: usize,
+    /// Relative L2 error of 8×8 block means of `indirect` against `reference` (linear radiance).
+    pub relative_l2_block8: f64,
+}
+
+#[derive(Serialize, Debug)]
+pub struct Report {
+    pub level: String,
+    pub size: [u32; 2],
+    pub frames: usize,
+    pub warmup_frames: usize,
+    pub adapter: String,
+    pub backend: String,
+    pub gpu_timestamps: bool,
+    pub camera_path: String,
+    pub gi: plugin_gi::GiSettings,
+    /// Per pass, in execution order (empty without timestamps).
+    pub passes: Vec<PassFigure>,
+    pub gpu_frame_ms: Option<Spread>,
+    pub cpu_frame_ms: Spread,
+    /// 1000 / median CPU frame time.
+    pub fps: f64,
+    pub reflection_lights: Option<LightFigure>,
+    pub light_budget: u32,
+    pub light_capacity: u32,
+    pub distribution_slots: u32,
+    pub gi_dispatches: u32,
+    pub gi_draws: u32,
+    pub error_vs_reference: ErrorFigure,
+    pub per_frame: Vec<FrameFigure>,
+}
+
+pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    let gi = crate::cli::gi_settings(&args.settings, args.gi).map_err(|e| anyhow!("--set {e}"))?;
+    // Opened first so that a bad path fails now, not after the benchmark.
+    let json = match &args.json {
+        Some(path) => Some((path, std::fs::File::create(path).with_context(|| format!("--json {}", path.display()))?)),
+        None => None,
+    };
+    let level = engine::scene::load_level(&args.level)?;
+    let gpu = Gpu::headless()?;
+    let report = bench(&gpu, &level, args, gi)?;
+    print!("{}", table(&report));
+    if let Some((path, mut file)) = json {
+        let text = serde_json::to_string_pretty(&report)?;
+        file.write_all(text.as_bytes())
+            .and_then(|_| file.write_all(b"\n"))
+            .with_context(|| format!("--json {}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) -> anyhow::Result<Report> {
+    let (plugins, handle) = crate::plugins(gi);
+    let mut renderer = Renderer::new(gpu, &level.scene, plugins)?;
+    renderer.set_view("final").map_err(|e| anyhow!(e))?;
+    let path = CameraPath::for_level(level);
+    let mut view: ViewState = initial_view(level, &ViewOverrides::default());
+    let n = args.frames as usize;
+    let (w, h) = args.size;
+    let target = HeadlessTarget::new(gpu, w, h, ImageKind::Display);
+
+    renderer.set_timing(true);
+    for _ in 0..WARMUP_FRAMES {
+        view.camera = path.camera(0, n);
+        renderer.render(gpu, &view, &target.texture, &target.view)?;
+        gpu.wait_idle();
+    }
+    let mut per_frame = Vec::with_capacity(n);
+    for i in 0..n {
+        view.camera = path.camera(i, n);
+        let start = Instant::now();
+        renderer.render(gpu, &view, &target.texture, &target.view)?;
+        gpu.wait_idle();
+        let cpu_ms = start.elapsed().as_secs_f64() * 1e3;
+        // Read after the timed window: the readback's map and wait are not part of the frame.
+        let passes = renderer.last_pass_times(gpu).unwrap_or_default();
+        let gpu_ms = (!passes.is_empty()).then(|| passes.iter().map(|(_, ms)| ms).sum());
+        per_frame.push(FrameFigure { cpu_ms, gpu_ms, passes });
+    }
+    renderer.set_timing(false);
+    let stats = handle.stats();
+
+    // Reflection lights, on a few frames rendered again untimed (the readback stalls).
+    let samples: Vec<usize> = if n <= LIGHT_SAMPLES {
+        (0..n).collect()
+    } else {
+        (0..LIGHT_SAMPLES).map(|k| k * (n - 1) / (LIGHT_SAMPLES - 1)).collect()
+    };
+    let mut counts = Vec::new();
+    for &i in &samples {
+        view.camera = path.camera(i, n);
+        renderer.render(gpu, &view, &target.texture, &target.view)?;
+        match plugin_gi::readback::lights(gpu, &renderer) {
+            Some(lights) => counts.push(lights.len()),
+            None => break, // the GI is off: its passes are not scheduled
+        }
+    }
+    let reflection_lights = (counts.len() == samples.len()).then(|| LightFigure {
+        median: Spread::of(&counts.iter().map(|&c| c as f64).collect::<Vec<_>>()).median,
+        frames: samples,
+        counts,
+    });
+
+    // The GI against brute force, on the first frame's camera at a small size.
+    view.camera = path.camera(0, n);
+    let linear = |renderer: &mut Renderer, name: &str| -> anyhow::Result<image::Rgba32FImage> {
+        renderer.set_view(name).map_err(|e| anyhow!(e))?;
+        let target = HeadlessTarget::new(gpu, ERROR_SIZE.0, ERROR_SIZE.1, ImageKind::Linear);
+        match target.render(gpu, renderer, &view)? {
+            RenderedImage::Linear(img) => Ok(img),
+            RenderedImage::Display(_) => unreachable!("asked for a linear target"),
+        }
+    };
+    let indirect = linear(&mut renderer, "indirect")?;
+    let reference = linear(&mut renderer, "reference")?;
+    let error = plugin_gi::metrics::block_error(&indirect, &reference);
+
+    let mut passes: Vec<(String, Vec<f64>)> = Vec::new();
+    for (name, ms) in per_frame.iter().flat_map(|f| &f.passes) {
+        match passes.iter_mut().find(|(n, _)| n == name) {
+            Some((_, v)) => v.push(*ms),
+            None => passes.push((name.clone(), vec![*ms])),
+        }
+    }
+    let gpu_totals: Vec<f64> = per_frame.iter().filter_map(|f| f.gpu_ms).collect();
+    let cpu_frame_ms = Spread::of(&per_frame.iter().map(|f| f.cpu_ms).collect::<Vec<_>>());
+    let info = gpu.adapter.get_info();
+    let settings = handle.settings();
+    Ok(Report {
+        level: args.level.display().to_string(),
+        size: [w, h],
+        frames: n,
+        warmup_frames: WARMUP_FRAMES,
+        adapter: info.name,
+        backend: format!("{:?}", info.backend),
+        gpu_timestamps: gpu.timestamps,
+        camera_path: path.describe(),
+        passes: passes.into_iter().map(|(name, v)| PassFigure { name, gpu_ms: Spread::of(&v) }).collect(),
+        gpu_frame_ms: (!gpu_totals.is_empty()).then(|| Spread::of(&gpu_totals)),
+        fps: 1e3 / cpu_frame_ms.median,
+        cpu_frame_ms,
+        reflection_lights,
+        light_budget: settings.light_budget,
+        light_capacity: stats.light_capacity,
+        distribution_slots: stats.slots,
+        gi_dispatches: stats.dispatches,
+        gi_draws: stats.draws,
+        error_vs_reference: ErrorFigure { size: [ERROR_SIZE.0, ERROR_SIZE.1], frame: 0, relative_l2_block8: error },
+        gi: settings,
+        per_frame,
+    })
+}
+
+/// The report as the table `bench` prints.
+pub fn table(r: &Report) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "headlamp bench: {}, {}x{}, {} frames (+{} warm-up, not counted), on {} ({})",
+        r.level, r.size[0], r.size[1], r.frames, r.warmup_frames, r.adapter, r.backend
+    );
+    let _ = writeln!(s, "camera: {}", r.camera_path);
+    let _ = writeln!(
+        s,
+        "GI: {}, light budget {}, instance capacity {}, distribution slots {}",
+        if r.gi.enabled { "on" } else { "off" },
+        r.light_budget,
+        r.light_capacity,
+        r.distribution_slots
+    );
+    let _ = writeln!(s);
+    let _ = writeln!(s, "| pass | GPU median ms | GPU p90 ms | share |");
+    let _ = writeln!(s, "| --- | ---: | ---: | ---: |");
+    if r.passes.is_empty() {
+        let _ = writeln!(s, "| (no GPU timestamps on this device) | | | |");
+    }
+    let total = r.gpu_frame_ms.map_or(f64::NAN, |g| g.median);
+    let sum_of_medians: f64 = r.passes.iter().map(|p| p.gpu_ms.median).sum();
+    for p in &r.passes {
+        let share = 100.0 * p.gpu_ms.median / sum_of_medians;
+        let _ = writeln!(s, "| {} | {:.3} | {:.3} | {share:.1} % |", p.name, p.gpu_ms.median, p.gpu_ms.p90);
+    }
+    if let Some(g) = r.gpu_frame_ms {
+        let _ = writeln!(s, "| **frame, GPU (Σ passes)** | {total:.3} | {:.3} | |", g.p90);
+    }
+    let c = r.cpu_frame_ms;
+    let _ =
+        writeln!(s, "| **frame, CPU wall (render + wait)** | {:.3} | {:.3} | **{:.1} fps** |", c.median, c.p90, r.fps);
+    let _ = writeln!(s);
+    match &r.reflection_lights {
+        Some(l) => {
+            let _ = writeln!(s, "reflection lights: median {} (frames {:?}: {:?})", l.median, l.frames, l.counts);
+        }
+        None => {
+            let _ = writeln!(s, "reflection lights: none (GI off)");
+        }
+    }
+    let _ = writeln!(
+        s,
+        "GI calls per frame: {} draws + {} dispatches = {}",
+        r.gi_draws,
+        r.gi_dispatches,
+        r.gi_draws + r.gi_dispatches
+    );
+    let e = &r.error_vs_reference;
+    let _ = writeln!(
+        s,
+        "error vs brute-force reference: {:.4} (relative L2 of 8x8 block means, `indirect` vs `reference`, {}x{}, frame {}'s camera)",
+        e.relative_l2_block8, e.size[0], e.size[1], e.frame
+    );
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percentiles_interpolate_between_ranks() {
+        let v = [1.0, 2.0, 3.0, 4.0, 5.0];
+        assert_eq!(percentile(&v, 0.5), 3.0);
+        assert_eq!(percentile(&v, 0.9), 4.6);
+        assert_eq!(percentile(&[7.0], 0.9), 7.0);
+        assert!(percentile(&[], 0.5).is_nan());
+    }
+
+    #[test]
+    fn the_walk_starts_at_the_spawn_and_sweeps_sixty_degrees() {
+        let path = CameraPath::Walk { eye: Vec3::new(0.0, 1.6, 3.8), yaw: 0.0, pitch: 0.0, fov_y: 1.0 };
+        let first = path.camera(0, 60);
+        assert!((first.position - Vec3::new(0.0, 1.6, 3.8)).length() < 1e-6);
+        assert!((first.forward() - Vec3::NEG_Z).length() < 1e-5);
+        // A quarter of the way: yaw +60° (turned left), 0.75 m walked down -Z.
+        let quarter = path.camera(15, 60);
+        assert!((quarter.position - Vec3::new(0.0, 1.6, 3.05)).length() < 1e-5);
+        let f = quarter.forward();
+        assert!((f.x + 60f32.to_radians().sin()).abs() < 1e-5 && (f.z + 0.5).abs() < 1e-5, "{f}");
+        // The same inputs give the same path.
+        assert_eq!(path.camera(7, 60), path.camera(7, 60));
+    }
+
+    #[test]
+    fn the_orbit_keeps_its_distance_and_looks_at_the_centre() {
+        let centre = Vec3::new(1.0, 2.0, 3.0);
+        let path = CameraPath::Orbit { centre, offset: Vec3::new(0.0, 1.0, 5.0), fov_y: 1.0 };
+        for i in 0..8 {
+            let c = path.camera(i, 8);
+            assert!(((c.position - centre).length() - 26f32.sqrt()).abs() < 1e-4);
+            assert!((c.forward() - (centre - c.position).normalize()).length() < 1e-5);
+        }
+    }
+}

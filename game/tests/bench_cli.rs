@@ -1,0 +1,92 @@
+//! `headlamp bench` as a user runs it: a short timedemo of the shipped level, its table, its
+//! JSON, and one clear line for bad input. Correctness of the figures, not speed.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn headlamp(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_headlamp")).args(args).output().expect("run headlamp")
+}
+
+fn cellar() -> String {
+    format!("{}/../levels/cellar", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("headlamp-bench-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn bench_of_the_cellar_prints_the_table_and_writes_json() {
+    let json = scratch("cellar").join("out.json");
+    let level = cellar();
+    let out = headlamp(&[
+        "bench",
+        "--level",
+        level.as_str(),
+        "--size",
+        "96x54",
+        "--frames",
+        "3",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "bench failed: {}\n{stdout}", String::from_utf8_lossy(&out.stderr));
+    println!("{stdout}");
+    for needle in
+        ["| pass |", "frame, CPU wall", "fps", "reflection lights", "GI calls per frame", "error vs brute-force"]
+    {
+        assert!(stdout.contains(needle), "the table lacks '{needle}':\n{stdout}");
+    }
+
+    let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(report["frames"], 3);
+    assert_eq!(report["size"], serde_json::json!([96, 54]));
+    let passes = report["passes"].as_array().expect("passes");
+    let timed = report["gpu_timestamps"].as_bool().expect("gpu_timestamps");
+    if timed {
+        for name in ["gbuffer", "direct_light", "gi_lights", "gi_shade", "gi_composite", "present"] {
+            let pass = passes.iter().find(|p| p["name"] == name).unwrap_or_else(|| panic!("no entry for pass {name}"));
+            for key in ["median", "p90", "mean", "min", "max"] {
+                let ms = pass["gpu_ms"][key].as_f64().unwrap_or_else(|| panic!("{name}.{key} is not a number"));
+                assert!(ms.is_finite() && ms >= 0.0, "{name}: {key} = {ms} ms");
+            }
+        }
+        assert_eq!(report["per_frame"][0]["passes"].as_array().unwrap().len(), passes.len());
+    } else {
+        eprintln!("this adapter has no encoder timestamps: only CPU times were checked");
+    }
+    let cpu = report["cpu_frame_ms"]["median"].as_f64().unwrap();
+    assert!(cpu.is_finite() && cpu > 0.0, "CPU frame time {cpu}");
+    assert!(report["fps"].as_f64().unwrap() > 0.0);
+    let lights = report["reflection_lights"]["median"].as_f64().expect("light count");
+    assert!(lights > 0.0, "no reflection lights");
+    assert!(lights <= report["light_capacity"].as_f64().unwrap());
+    assert!(report["gi_draws"].as_u64().unwrap() > 0 && report["gi_dispatches"].as_u64().unwrap() > 0);
+    let error = report["error_vs_reference"]["relative_l2_block8"].as_f64().expect("error figure");
+    assert!((0.0..1.0).contains(&error), "error vs reference {error}");
+}
+
+#[test]
+fn bench_rejects_bad_input_with_one_line() {
+    let dir = scratch("bad");
+    let missing = dir.join("nope.gltf");
+    let bad_json = dir.join("no_such_dir").join("out.json");
+    let cellar = cellar();
+    let cases: [(Vec<&str>, &str); 4] = [
+        (vec!["bench", "--level", missing.to_str().unwrap()], "nope.gltf"),
+        (vec!["bench", "--level", &cellar, "--frames", "0"], "--frames"),
+        (vec!["bench", "--level", &cellar, "--set", "gi.light_budget=3"], "light_budget"),
+        (vec!["bench", "--level", &cellar, "--json", bad_json.to_str().unwrap()], "--json"),
+    ];
+    for (args, needle) in cases {
+        let out = headlamp(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} should fail");
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: expected one line, got:\n{stderr}");
+        assert!(stderr.contains(needle), "{args:?}: '{stderr}' does not mention {needle}");
+    }
+}
