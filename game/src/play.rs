@@ -131,3 +131,41 @@ impl WindowApp for FreeFly {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::settings_panel::egui_harness::{click, input, texts};
+
+    /// A change made in the panel reaches the GI plugin that renders the next frame.
+    #[test]
+    fn the_settings_panel_drives_the_gi_plugin() {
+        let level = engine::scene::load_level(&crate::default_level()).unwrap();
+        let view = initial_view(&level, &ViewOverrides::default());
+        let plugin = plugin_gi::GiPlugin::new(GiSettings::default());
+        let gi = plugin.handle();
+        let mut app = FreeFly {
+            level,
+            view,
+            yaw: 0.0,
+            pitch: 0.0,
+            renderer: None,
+            gi_settings: GiSettings::default(),
+            gi: Some(gi.clone()),
+            panel_open: true,
+            release_mouse: false,
+        };
+        let ctx = egui::Context::default();
+        let mut output = None;
+        for _ in 0..3 {
+            output = Some(ctx.run_ui(input(Vec::new()), |ui| app.ui(ui.ctx())));
+        }
+        let (_, rect) = texts(&output.unwrap()).into_iter().find(|(t, _)| t == "enabled").expect("the panel is shown");
+        assert!(gi.settings().enabled);
+        for events in click(rect.center()) {
+            let _ = ctx.run_ui(input(events), |ui| app.ui(ui.ctx()));
+        }
+        assert!(!app.gi_settings.enabled, "the click unticks 'enabled'");
+        assert!(!gi.settings().enabled, "the plugin sees the change");
+    }
+}

@@ -65,13 +65,14 @@ pub fn window(ctx: &egui::Context, open: &mut bool, s: &mut GiSettings) -> bool 
     changed
 }
 
+/// Drives egui without a window, for tests of the panel and of the app around it.
 #[cfg(test)]
-mod tests {
-    use super::*;
+pub(crate) mod egui_harness {
+    use engine::egui;
 
     const SCREEN: egui::Vec2 = egui::vec2(800.0, 600.0);
 
-    fn input(events: Vec<egui::Event>) -> egui::RawInput {
+    pub fn input(events: Vec<egui::Event>) -> egui::RawInput {
         egui::RawInput {
             screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, SCREEN)),
             events,
@@ -80,7 +81,7 @@ mod tests {
     }
 
     /// Every text drawn in a pass, with the rectangle it covers.
-    fn texts(output: &egui::FullOutput) -> Vec<(String, egui::Rect)> {
+    pub fn texts(output: &egui::FullOutput) -> Vec<(String, egui::Rect)> {
         fn walk(shape: &egui::Shape, out: &mut Vec<(String, egui::Rect)>) {
             match shape {
                 egui::Shape::Text(t) => out.push((t.galley.text().to_owned(), t.visual_bounding_rect())),
@@ -94,6 +95,24 @@ mod tests {
         }
         out
     }
+
+    /// A press and release of the primary button at `at`, as three passes see them.
+    pub fn click(at: egui::Pos2) -> [Vec<egui::Event>; 3] {
+        let button = |pressed| egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        };
+        [vec![egui::Event::PointerMoved(at)], vec![button(true)], vec![button(false)]]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    use super::egui_harness::{input, texts};
 
     /// Runs one pass of the panel inside a window, as `headlamp play` shows it.
     fn pass(ctx: &egui::Context, s: &mut GiSettings, events: Vec<egui::Event>) -> (bool, egui::FullOutput) {
@@ -156,16 +175,10 @@ mod tests {
             output = Some(pass(&ctx, &mut s, Vec::new()).1);
         }
         let (_, rect) = texts(&output.unwrap()).into_iter().find(|(t, _)| t == "Reset to defaults").unwrap();
-        let at = rect.center();
-        let button = |pressed| egui::Event::PointerButton {
-            pos: at,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        };
-        pass(&ctx, &mut s, vec![egui::Event::PointerMoved(at)]);
-        pass(&ctx, &mut s, vec![button(true)]);
-        let (changed, _) = pass(&ctx, &mut s, vec![button(false)]);
+        let [moved, pressed, released] = super::egui_harness::click(rect.center());
+        pass(&ctx, &mut s, moved);
+        pass(&ctx, &mut s, pressed);
+        let (changed, _) = pass(&ctx, &mut s, released);
         assert!(changed, "clicking the button reports a change");
         assert_eq!(s, GiSettings::default());
     }
