@@ -297,3 +297,19 @@ fn nothing_is_tinted_by_a_wall_the_lamp_does_not_see() {
     assert!(red > 0.0, "the lit white surfaces still light each other");
     assert!(red <= green * 1.02, "no red tint without a lit red surface: red {red}, green {green}");
 }
+
+#[test]
+fn a_lamp_facing_the_void_lights_nothing_indirectly() {
+    // Camera and lamp turned away from the open box: they see nothing, so there is no
+    // reflected flux, no reflection light and no indirect light anywhere.
+    let gpu = gpu();
+    let mut view = cornell_view(4.0);
+    view.camera = engine::camera::Camera::look_at(Vec3::new(0.0, 1.0, 3.4), Vec3::new(0.0, 1.0, 6.0), FOV_Y);
+    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let indirect = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
+    assert!(indirect.pixels().all(|p| p[0] == 0.0 && p[1] == 0.0 && p[2] == 0.0));
+    assert!(readback::lights(&gpu, &r.renderer).unwrap().is_empty(), "no flux, no lights");
+    // Turned back towards the box, the same renderer lights it again.
+    let lit = render_linear(&gpu, &mut r, &cornell_view(4.0), "indirect", SIZE);
+    assert!(lit.pixels().any(|p| p[0] > 0.0));
+}
