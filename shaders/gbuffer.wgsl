@@ -1,38 +1,11 @@
 // G-buffer pass: rasterises the scene from the camera into albedo, world normal, world position
 // (+ view depth) and emissive targets.
 #include "common.wgsl"
-
-struct Material {
-    base_color: vec4f,
-    // rgb emissive radiance; w: 1 when a base colour texture is bound.
-    emissive: vec4f,
-};
-
-@group(1) @binding(0) var<uniform> material: Material;
-@group(1) @binding(1) var base_color_texture: texture_2d<f32>;
-@group(1) @binding(2) var material_sampler: sampler;
-
-struct VertexIn {
-    @location(0) position: vec3f,
-    @location(1) normal: vec3f,
-    @location(2) uv: vec2f,
-};
-
-struct VertexOut {
-    @builtin(position) clip: vec4f,
-    @location(0) world: vec3f,
-    @location(1) normal: vec3f,
-    @location(2) uv: vec2f,
-};
+#include "scene_surface.wgsl"
 
 @vertex
 fn vs_main(v: VertexIn) -> VertexOut {
-    var out: VertexOut;
-    out.clip = globals.view_proj * vec4f(v.position, 1.0);
-    out.world = v.position;
-    out.normal = v.normal;
-    out.uv = v.uv;
-    return out;
+    return surface_vertex(v, globals.view_proj);
 }
 
 struct GBufferOut {
@@ -44,10 +17,7 @@ struct GBufferOut {
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
-    var albedo = material.base_color;
-    if material.emissive.w > 0.5 {
-        albedo *= textureSample(base_color_texture, material_sampler, in.uv);
-    }
+    let albedo = surface_albedo(in);
     // Surfaces are lit on the side the viewer sees: single-sided walls of any winding work.
     var n = normalize(in.normal);
     if !front {
@@ -55,7 +25,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     }
     let view_depth = -(globals.view * vec4f(in.world, 1.0)).z;
     var out: GBufferOut;
-    out.albedo = vec4f(albedo.rgb, 1.0);
+    out.albedo = vec4f(albedo, 1.0);
     out.normal = vec4f(n, 1.0);
     out.position = vec4f(in.world, view_depth);
     out.emissive = vec4f(material.emissive.rgb, 1.0);

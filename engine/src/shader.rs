@@ -2,7 +2,10 @@
 //! share declarations without a shader preprocessor dependency.
 
 /// The engine's shared include files, by the name used in `#include`.
-pub const ENGINE_INCLUDES: &[(&str, &str)] = &[("common.wgsl", include_str!("../../shaders/common.wgsl"))];
+pub const ENGINE_INCLUDES: &[(&str, &str)] = &[
+    ("common.wgsl", include_str!("../../shaders/common.wgsl")),
+    ("scene_surface.wgsl", include_str!("../../shaders/scene_surface.wgsl")),
+];
 
 /// Replaces each `#include "name"` line with the named source (engine includes first, then
 /// `extra`); each file is included once. Unknown names are a programming error.

@@ -23,43 +23,56 @@ impl GBufferPass {
     pub fn new(gpu: &Gpu, layouts: &CoreLayouts) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "gbuffer", SHADER, &[]);
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gbuffer"),
-            bind_group_layouts: &[Some(&layouts.globals), Some(&layouts.material)],
-            immediate_size: 0,
-        });
-        let target = |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("gbuffer"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(VERTEX_LAYOUT)],
-            },
-            // No culling: files come with either winding and single-sided walls; the shader
-            // turns the normal towards the viewer.
-            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Greater),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[target(ALBEDO_FORMAT), target(HDR_FORMAT), target(POSITION_FORMAT), target(HDR_FORMAT)],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let targets = [ALBEDO_FORMAT, HDR_FORMAT, POSITION_FORMAT, HDR_FORMAT];
+        let pipeline = scene_pipeline(device, "gbuffer", &module, layouts, &targets);
         Self { pipeline }
     }
+}
+
+/// A pipeline rasterising the scene's meshes (vertex layout of `scene::Vertex`, material in
+/// group 1) into colour `targets` and a reversed-Z depth buffer (cleared to 0, nearer is
+/// greater). No culling: files come with either winding and single-sided walls, and each
+/// shader turns normals towards its viewer.
+pub fn scene_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    layouts: &CoreLayouts,
+    targets: &[wgpu::TextureFormat],
+) -> wgpu::RenderPipeline {
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(&layouts.globals), Some(&layouts.material)],
+        immediate_size: 0,
+    });
+    let targets: Vec<Option<wgpu::ColorTargetState>> = targets.iter().map(|&format| Some(format.into())).collect();
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[Some(VERTEX_LAYOUT)],
+        },
+        primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Greater),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }
 
 impl RenderPass for GBufferPass {

@@ -16,7 +16,6 @@ use super::names::*;
 use super::HDR_FORMAT;
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
-use crate::gpu_scene::VERTEX_LAYOUT;
 use crate::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
 
 pub const SHADER: &str = include_str!("../../../shaders/lamp_view.wgsl");
@@ -28,7 +27,8 @@ pub const LAMP_MAP_SIZE: u32 = 1024;
 pub const LAMP_ALBEDO_FORMAT: wgpu::TextureFormat = super::gbuffer::ALBEDO_FORMAT;
 pub const LAMP_NORMAL_FORMAT: wgpu::TextureFormat = HDR_FORMAT;
 pub const LAMP_POSITION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-pub const LAMP_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// The camera's depth format: both views are drawn by the same scene pipeline.
+pub const LAMP_DEPTH_FORMAT: wgpu::TextureFormat = super::gbuffer::DEPTH_FORMAT;
 
 /// The descriptor of a `lamp.*` texture: fixed size, sampled by later passes, and copyable so
 /// tools and tests can read it back.
@@ -44,43 +44,11 @@ impl LampViewPass {
     pub fn new(gpu: &Gpu, layouts: &CoreLayouts) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "lamp view", SHADER, &[]);
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("lamp view"),
-            bind_group_layouts: &[Some(&layouts.globals), Some(&layouts.material)],
-            immediate_size: 0,
-        });
-        let target = |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("lamp view"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(VERTEX_LAYOUT)],
-            },
-            // No culling, as in the camera G-buffer: single-sided walls must still block the
-            // lamp from either side.
-            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-            // Reversed Z like the camera: cleared to 0 (infinitely far), nearer is greater.
-            // No rasteriser depth bias: the shadow test applies its own, in metres.
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: LAMP_DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Greater),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[target(LAMP_ALBEDO_FORMAT), target(LAMP_NORMAL_FORMAT), target(LAMP_POSITION_FORMAT)],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        // Same rasterisation as the camera's G-buffer (no culling: single-sided walls must still
+        // block the lamp from either side; reversed Z). No rasteriser depth bias: the shadow
+        // test applies its own, in metres.
+        let targets = [LAMP_ALBEDO_FORMAT, LAMP_NORMAL_FORMAT, LAMP_POSITION_FORMAT];
+        let pipeline = super::gbuffer::scene_pipeline(device, "lamp view", &module, layouts, &targets);
         Self { pipeline }
     }
 }
