@@ -75,6 +75,46 @@ pub fn scene_pipeline(
     })
 }
 
+/// Records one pass drawing every mesh with a [`scene_pipeline`]: the graph textures `colors`
+/// cleared to transparent (w = 0 marks "no geometry") and `depth` cleared to 0 (reversed Z).
+pub fn draw_scene(
+    ctx: &mut PassContext<'_>,
+    label: &str,
+    pipeline: &wgpu::RenderPipeline,
+    colors: &[&str],
+    depth: &str,
+) {
+    let colors: Vec<Option<wgpu::RenderPassColorAttachment>> = colors
+        .iter()
+        .map(|name| {
+            Some(wgpu::RenderPassColorAttachment {
+                view: ctx.view(name),
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        })
+        .collect();
+    let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &colors,
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: ctx.view(depth),
+            depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, ctx.frame.globals, &[]);
+    ctx.frame.scene.draw_all(&mut pass);
+}
+
 impl RenderPass for GBufferPass {
     fn name(&self) -> &str {
         "gbuffer"
@@ -89,38 +129,7 @@ impl RenderPass for GBufferPass {
     }
 
     fn run(&mut self, ctx: &mut PassContext<'_>) {
-        let attachment = |name: &str| {
-            Some(wgpu::RenderPassColorAttachment {
-                view: ctx.view(name),
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
-        };
-        let colors = [
-            attachment(GBUFFER_ALBEDO),
-            attachment(GBUFFER_NORMAL),
-            attachment(GBUFFER_POSITION),
-            attachment(GBUFFER_EMISSIVE),
-        ];
-        let depth = ctx.view(GBUFFER_DEPTH);
-        let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("gbuffer"),
-            color_attachments: &colors,
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, ctx.frame.globals, &[]);
-        ctx.frame.scene.draw_all(&mut pass);
+        let colors = [GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION, GBUFFER_EMISSIVE];
+        draw_scene(ctx, "gbuffer", &self.pipeline, &colors, GBUFFER_DEPTH);
     }
 }

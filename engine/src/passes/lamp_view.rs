@@ -70,32 +70,7 @@ impl RenderPass for LampViewPass {
             // The camera G-buffer is the lamp view: nothing to do.
             return;
         }
-        let attachment = |name: &str| {
-            Some(wgpu::RenderPassColorAttachment {
-                view: ctx.view(name),
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
-        };
-        let colors = [attachment(LAMP_ALBEDO), attachment(LAMP_NORMAL), attachment(LAMP_POSITION)];
-        let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("lamp view"),
-            color_attachments: &colors,
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: ctx.view(LAMP_DEPTH),
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, ctx.frame.globals, &[]);
-        ctx.frame.scene.draw_all(&mut pass);
+        let colors = [LAMP_ALBEDO, LAMP_NORMAL, LAMP_POSITION];
+        super::gbuffer::draw_scene(ctx, "lamp view", &self.pipeline, &colors, LAMP_DEPTH);
     }
 }
