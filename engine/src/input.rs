@@ -31,7 +31,9 @@ impl Input {
         self.mouse_pressed.contains(&b)
     }
 
-    pub(crate) fn key_event(&mut self, k: KeyCode, down: bool, repeat: bool) {
+    /// A key went down or up. The window runner calls these from window events; tests drive
+    /// an `Input` the same way.
+    pub fn key_event(&mut self, k: KeyCode, down: bool, repeat: bool) {
         if down {
             if !repeat {
                 self.pressed.push(k);
@@ -44,7 +46,7 @@ impl Input {
         }
     }
 
-    pub(crate) fn mouse_button(&mut self, b: MouseButton, down: bool) {
+    pub fn mouse_button(&mut self, b: MouseButton, down: bool) {
         if down {
             self.mouse_pressed.push(b);
             if !self.mouse_held.contains(&b) {
@@ -62,7 +64,7 @@ impl Input {
     }
 
     /// Clears per-frame edges and motion after the app has seen them.
-    pub(crate) fn end_frame(&mut self) {
+    pub fn end_frame(&mut self) {
         self.pressed.clear();
         self.mouse_pressed.clear();
         self.mouse_delta = Vec2::ZERO;

@@ -1,7 +1,9 @@
 //! Headlamp's engine: GPU context, render graph, scene assets, deferred renderer, headless
-//! output, the window loop and its egui UI layer. It knows nothing of any game.
+//! output, the window loop and its egui UI layer, the fixed-tick clock and the replay container.
+//! It knows nothing of any game.
 
 pub mod camera;
+pub mod clock;
 pub mod frame;
 pub mod globals;
 pub mod gpu;
@@ -15,6 +17,7 @@ pub mod output;
 pub mod passes;
 pub mod plugin;
 pub mod renderer;
+pub mod replay;
 pub mod shader;
 pub mod start_view;
 pub mod ui;

@@ -44,7 +44,8 @@ pub trait WindowApp {
 }
 
 /// Opens a window and runs `app` until it closes; returns the first error the app reported.
-pub fn run(title: &str, app: impl WindowApp) -> anyhow::Result<()> {
+/// The app is borrowed, so what it holds (a recording, say) outlives the window either way.
+pub fn run<A: WindowApp>(title: &str, app: &mut A) -> anyhow::Result<()> {
     let event_loop = EventLoop::new().context("could not open a window (is a display available?)")?;
     event_loop.set_control_flow(ControlFlow::Poll);
     let mut runner = Runner {
@@ -73,8 +74,8 @@ struct WindowState {
     ui_format: wgpu::TextureFormat,
 }
 
-struct Runner<A: WindowApp> {
-    app: A,
+struct Runner<'a, A: WindowApp> {
+    app: &'a mut A,
     title: String,
     state: Option<WindowState>,
     input: Input,
@@ -82,7 +83,7 @@ struct Runner<A: WindowApp> {
     error: Option<anyhow::Error>,
 }
 
-impl<A: WindowApp> Runner<A> {
+impl<A: WindowApp> Runner<'_, A> {
     fn create(&mut self, event_loop: &ActiveEventLoop) -> anyhow::Result<()> {
         let attrs = Window::default_attributes()
             .with_title(&self.title)
@@ -191,7 +192,7 @@ impl<A: WindowApp> Runner<A> {
     }
 }
 
-impl<A: WindowApp> ApplicationHandler for Runner<A> {
+impl<A: WindowApp> ApplicationHandler for Runner<'_, A> {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.state.is_none() {
             if let Err(e) = self.create(event_loop) {
