@@ -24,6 +24,12 @@ pub enum Command {
     Render(RenderArgs),
     /// Headless timedemo: per-pass GPU times, frame times, and the GI's figures.
     Bench(BenchArgs),
+    /// Play a level in a window and record every tick's input to a replay file.
+    Record(RecordArgs),
+    /// Watch a replay in a window, re-simulate it headless (with snapshots), or verify it.
+    Replay(ReplayArgs),
+    /// Turn a hand-written input script into a replay, without a window.
+    Script(ScriptArgs),
 }
 
 #[derive(clap::Args, Debug, Default)]
@@ -89,6 +95,70 @@ pub struct BenchArgs {
     #[arg(long, value_parser = parse_on_off)]
     pub gi: Option<bool>,
     /// A GI setting, e.g. gi.light_budget=2048 (repeatable; see README for the names).
+    #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
+    pub settings: Vec<(String, String)>,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct RecordArgs {
+    /// A level folder or a bare .gltf/.glb/.obj file [default: the shipped level].
+    #[arg(long)]
+    pub level: Option<PathBuf>,
+    /// The replay file to write (written when the window closes).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Seed of the simulation's random numbers [default: from the clock].
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Indirect light (global illumination) on or off; stored in the replay.
+    #[arg(long, value_parser = parse_on_off)]
+    pub gi: Option<bool>,
+    /// A GI setting, e.g. gi.light_budget=2048 (repeatable); stored in the replay.
+    #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
+    pub settings: Vec<(String, String)>,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct ReplayArgs {
+    /// The .replay file.
+    pub file: PathBuf,
+    /// The level to replay on [default: the replay's level, found by its id].
+    #[arg(long)]
+    pub level: Option<PathBuf>,
+    /// No window: re-simulate every tick (checking the stored hashes) and print `ticks=N hash=H`.
+    #[arg(long)]
+    pub headless: bool,
+    /// With --headless: render a PNG after each of these ticks (0 = the start), e.g. 60,120.
+    #[arg(long, value_delimiter = ',', requires = "headless")]
+    pub snapshots: Vec<u32>,
+    /// Folder for the snapshots (created if missing).
+    #[arg(long, value_name = "DIR", requires = "headless")]
+    pub out_dir: Option<PathBuf>,
+    /// Snapshot size in pixels.
+    #[arg(long, default_value = "640x360", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Re-simulate without rendering and check every tick's state hash; prints `ok ticks=N`.
+    #[arg(long, conflicts_with_all = ["headless", "snapshots", "out_dir"])]
+    pub verify: bool,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct ScriptArgs {
+    /// The input script (see README: one `TICKS ACTION...` step per line).
+    pub script: PathBuf,
+    /// A level folder or a bare .gltf/.glb/.obj file.
+    #[arg(long)]
+    pub level: PathBuf,
+    /// The replay file to write.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Seed of the simulation's random numbers.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Indirect light (global illumination) on or off; stored in the replay.
+    #[arg(long, value_parser = parse_on_off)]
+    pub gi: Option<bool>,
+    /// A GI setting, e.g. gi.light_budget=256 (repeatable); stored in the replay.
     #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
     pub settings: Vec<(String, String)>,
 }

@@ -1,4 +1,4 @@
-//! `headlamp`: play (default), render headless, or bench. Errors end the program with one line.
+//! `headlamp`: play (default), render headless, bench, record, replay, or script a replay. Errors end the program with one line.
 
 use std::process::ExitCode;
 
@@ -25,6 +25,9 @@ fn main() -> ExitCode {
         Command::Play(args) => game::play::run(&args.level.unwrap_or_else(game::default_level)),
         Command::Render(args) => game::render_cmd::run(&args),
         Command::Bench(args) => game::bench::run(&args),
+        Command::Record(args) => game::replay_cmd::record(&args),
+        Command::Replay(args) => game::replay_cmd::replay(&args),
+        Command::Script(args) => game::replay_cmd::script(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,10 +1,11 @@
-//! `headlamp play`: the level in a window with a free-fly camera (the game proper comes later).
+//! The game in a window: live play, live play while recording, or watching a replay. All three
+//! run the same fixed-tick simulation; they differ only in where each tick's command comes from.
 //! F1 toggles the GI settings panel; opening it releases the mouse so its sliders can be used
 //! at once, and a click on the 3D view captures the mouse again (the panel stays open).
 
 use std::path::Path;
 
-use engine::camera::yaw_pitch_rotation;
+use engine::clock::FixedClock;
 use engine::egui;
 use engine::frame::ViewState;
 use engine::gpu::Gpu;
@@ -13,38 +14,44 @@ use engine::renderer::Renderer;
 use engine::scene::Level;
 use engine::start_view::{initial_view, ViewOverrides};
 use engine::window::WindowApp;
-use glam::Vec3;
 use plugin_gi::{GiHandle, GiSettings};
 
+use crate::command_sampler::{CommandSampler, MOUSE_SENSITIVITY};
+use crate::recording::{Divergence, LoadedReplay, Recorder};
 use crate::settings_panel;
+use crate::sim::{Simulation, WorldState};
 
-/// Radians of view rotation per pixel of mouse motion.
-const MOUSE_SENSITIVITY: f32 = 0.0025;
-const FLY_SPEED: f32 = 4.0;
-
+/// `headlamp play`.
 pub fn run(level_path: &Path) -> anyhow::Result<()> {
     let level = engine::scene::load_level(level_path)?;
-    let view = initial_view(&level, &ViewOverrides::default());
-    let (yaw, pitch) = yaw_pitch_of(view.camera.forward());
-    let app = FreeFly {
-        level,
-        view,
-        yaw,
-        pitch,
-        renderer: None,
-        gi_settings: GiSettings::default(),
-        gi: None,
-        panel_open: false,
-        release_mouse: false,
-    };
-    engine::window::run("Headlamp", app)
+    let collision = crate::sim::level_collision(&level)?;
+    let sim = Simulation::new(&level, collision, FixedClock::DEFAULT_TICK_RATE, crate::recording::fresh_seed());
+    let mut app = GameWindow::new(level, sim, TickSource::live(None), GiSettings::default());
+    engine::window::run("Headlamp", &mut app)
 }
 
-pub struct FreeFly {
+/// Where ticks come from.
+pub enum TickSource {
+    /// The keyboard and mouse, optionally recorded.
+    Live { sampler: CommandSampler, recorder: Option<Recorder> },
+    /// A replay's commands, checked against its hashes as they run.
+    Replay { replay: Box<LoadedReplay>, next: usize, diverged: Option<Divergence> },
+}
+
+impl TickSource {
+    pub fn live(recorder: Option<Recorder>) -> Self {
+        TickSource::Live { sampler: CommandSampler::new(MOUSE_SENSITIVITY), recorder }
+    }
+}
+
+pub struct GameWindow {
     level: Level,
+    pub sim: Simulation,
+    /// The state one tick before `sim.state`: frames are drawn between the two.
+    prev: WorldState,
+    clock: FixedClock,
     view: ViewState,
-    yaw: f32,
-    pitch: f32,
+    pub source: TickSource,
     renderer: Option<Renderer>,
     /// The GI settings as the panel (F1) leaves them, pushed to the plugin on every change.
     pub gi_settings: GiSettings,
@@ -53,12 +60,72 @@ pub struct FreeFly {
     release_mouse: bool,
 }
 
-fn yaw_pitch_of(forward: Vec3) -> (f32, f32) {
-    let f = forward.normalize();
-    ((-f.x).atan2(-f.z), f.y.clamp(-1.0, 1.0).asin())
+impl GameWindow {
+    pub fn new(level: Level, sim: Simulation, source: TickSource, gi_settings: GiSettings) -> Self {
+        let mut view = initial_view(&level, &ViewOverrides::default());
+        crate::view::at(&mut view, &sim.state);
+        Self {
+            prev: sim.state,
+            clock: FixedClock::new(sim.tick_rate()),
+            level,
+            sim,
+            view,
+            source,
+            renderer: None,
+            gi_settings,
+            gi: None,
+            panel_open: false,
+            release_mouse: false,
+        }
+    }
+
+    /// Runs the ticks this frame's time pays for.
+    fn run_ticks(&mut self, input: &Input, dt: f32) {
+        if let TickSource::Live { sampler, .. } = &mut self.source {
+            sampler.gather(input);
+        }
+        for _ in 0..self.clock.advance(dt) {
+            let before = self.sim.state;
+            match &mut self.source {
+                TickSource::Live { sampler, recorder } => {
+                    let cmd = sampler.next_command(input);
+                    self.sim.step(&cmd);
+                    if let Some(r) = recorder {
+                        r.push(&cmd, &self.sim.state);
+                    }
+                }
+                TickSource::Replay { replay, next, diverged } => {
+                    if *next >= replay.commands.len() {
+                        break;
+                    }
+                    if let Err(d) = replay.step_checked(&mut self.sim, *next) {
+                        log::error!("{}: {d}", replay.path.display());
+                        diverged.get_or_insert(d);
+                    }
+                    *next += 1;
+                }
+            }
+            self.prev = before;
+        }
+    }
+
+    fn status(&self) -> String {
+        let tick = self.sim.state.tick;
+        match &self.source {
+            TickSource::Live { recorder: Some(r), .. } => {
+                format!("● recording {} — tick {tick} (close the window to save)", r.path.display())
+            }
+            TickSource::Live { recorder: None, .. } => String::new(),
+            TickSource::Replay { replay, diverged: Some(d), .. } => format!("{}: {d}", replay.path.display()),
+            TickSource::Replay { replay, next, .. } => {
+                let end = if *next >= replay.commands.len() { " — finished" } else { "" };
+                format!("▶ replay {} — tick {tick} of {}{end}", replay.path.display(), replay.commands.len())
+            }
+        }
+    }
 }
 
-impl WindowApp for FreeFly {
+impl WindowApp for GameWindow {
     fn init(&mut self, gpu: &Gpu, _format: engine::wgpu::TextureFormat) -> anyhow::Result<()> {
         let (plugins, gi) = crate::plugins(self.gi_settings.clone());
         self.renderer = Some(Renderer::new(gpu, &self.level.scene, plugins)?);
@@ -67,39 +134,12 @@ impl WindowApp for FreeFly {
     }
 
     fn update(&mut self, input: &Input, dt: f32) {
-        if input.captured {
-            self.yaw -= input.mouse_delta.x * MOUSE_SENSITIVITY;
-            self.pitch = (self.pitch - input.mouse_delta.y * MOUSE_SENSITIVITY).clamp(-1.55, 1.55);
-        }
-        let camera = &mut self.view.camera;
-        camera.rotation = yaw_pitch_rotation(self.yaw, self.pitch);
-        let (forward, right) = (camera.forward(), camera.rotation * Vec3::X);
-        let mut motion = Vec3::ZERO;
-        for (key, dir) in [
-            (KeyCode::KeyW, forward),
-            (KeyCode::KeyS, -forward),
-            (KeyCode::KeyD, right),
-            (KeyCode::KeyA, -right),
-            (KeyCode::Space, Vec3::Y),
-            (KeyCode::KeyC, -Vec3::Y),
-        ] {
-            if input.held(key) {
-                motion += dir;
-            }
-        }
-        let speed = if input.held(KeyCode::ShiftLeft) { FLY_SPEED * 3.0 } else { FLY_SPEED };
-        camera.position += motion.normalize_or_zero() * speed * dt;
-        if input.pressed(KeyCode::KeyF) {
-            self.view.headlamp.on = !self.view.headlamp.on;
-        }
-        // G puts the lamp down where the camera is, looking where it looks, or picks it up.
-        if input.pressed(KeyCode::KeyG) {
-            if self.view.headlamp.attached {
-                self.view.headlamp.detach_at(&self.view.camera);
-            } else {
-                self.view.headlamp.attached = true;
-            }
-        }
+        self.run_ticks(input, dt);
+        let pending = match &self.source {
+            TickSource::Live { sampler, .. } => sampler.pending_look(),
+            TickSource::Replay { .. } => (0.0, 0.0),
+        };
+        crate::view::apply(&mut self.view, &self.prev, &self.sim.state, self.clock.alpha(), pending);
         if input.pressed(KeyCode::F1) {
             self.panel_open = !self.panel_open;
             self.release_mouse = self.panel_open;
@@ -112,6 +152,18 @@ impl WindowApp for FreeFly {
 
     fn ui(&mut self, ctx: &egui::Context) {
         settings_panel::hint(ctx);
+        let status = self.status();
+        if !status.is_empty() {
+            egui::Area::new(egui::Id::unique("headlamp status"))
+                .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-8.0, 8.0))
+                .interactable(false)
+                .show(ctx, |ui| {
+                    egui::Frame::NONE
+                        .fill(egui::Color32::from_black_alpha(150))
+                        .inner_margin(egui::Margin::symmetric(6, 3))
+                        .show(ui, |ui| ui.label(egui::RichText::new(status).color(egui::Color32::from_gray(230))));
+                });
+        }
         if settings_panel::window(ctx, &mut self.panel_open, &mut self.gi_settings) {
             // The GI reads its settings every frame: the change shows on the next one.
             if let Some(gi) = &self.gi {
@@ -137,24 +189,20 @@ mod tests {
     use super::*;
     use crate::settings_panel::egui_harness::{click, input, texts};
 
+    fn app() -> GameWindow {
+        let level = engine::scene::load_level(&crate::default_level()).unwrap();
+        let sim = Simulation::new(&level, crate::sim::level_collision(&level).unwrap(), 60, 1);
+        GameWindow::new(level, sim, TickSource::live(None), GiSettings::default())
+    }
+
     /// A change made in the panel reaches the GI plugin that renders the next frame.
     #[test]
     fn the_settings_panel_drives_the_gi_plugin() {
-        let level = engine::scene::load_level(&crate::default_level()).unwrap();
-        let view = initial_view(&level, &ViewOverrides::default());
         let plugin = plugin_gi::GiPlugin::new(GiSettings::default());
         let gi = plugin.handle();
-        let mut app = FreeFly {
-            level,
-            view,
-            yaw: 0.0,
-            pitch: 0.0,
-            renderer: None,
-            gi_settings: GiSettings::default(),
-            gi: Some(gi.clone()),
-            panel_open: true,
-            release_mouse: false,
-        };
+        let mut app = app();
+        app.gi = Some(gi.clone());
+        app.panel_open = true;
         let ctx = egui::Context::default();
         let mut output = None;
         for _ in 0..3 {
@@ -167,5 +215,22 @@ mod tests {
         }
         assert!(!app.gi_settings.enabled, "the click unticks 'enabled'");
         assert!(!gi.settings().enabled, "the plugin sees the change");
+    }
+
+    /// Frames of any length run the ticks their time pays for, and the view sits between the
+    /// two latest states.
+    #[test]
+    fn frames_run_fixed_ticks_and_draw_between_them() {
+        let mut app = app();
+        let input = Input::default();
+        app.update(&input, 1.0 / 144.0);
+        assert_eq!(app.sim.state.tick, 0, "less than a tick of time runs no tick");
+        for _ in 0..143 {
+            app.update(&input, 1.0 / 144.0);
+        }
+        assert!((59..=60).contains(&app.sim.state.tick), "a second runs 60 ticks, not {}", app.sim.state.tick);
+        let (a, b) = (app.prev.player.eye(), app.sim.state.player.eye());
+        let eye = app.view.camera.position;
+        assert!(eye.distance(a) <= a.distance(b) + 1e-5 && eye.distance(b) <= a.distance(b) + 1e-5);
     }
 }

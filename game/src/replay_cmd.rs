@@ -1,0 +1,162 @@
+//! `headlamp record`, `headlamp replay` and `headlamp script`.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{anyhow, bail, Context};
+use engine::clock::FixedClock;
+use engine::gpu::Gpu;
+use engine::headless::{HeadlessTarget, ImageKind};
+use engine::renderer::Renderer;
+use engine::start_view::{initial_view, ViewOverrides};
+
+use crate::cli::{RecordArgs, ReplayArgs, ScriptArgs};
+use crate::play::{GameWindow, TickSource};
+use crate::recording::{self, LoadedReplay, Recorder};
+use crate::sim::{Simulation, TickCommand, WorldState};
+
+/// Plays in a window while recording; the replay is written when the window closes, and also
+/// when the game stops on an error, so what was played is never lost.
+pub fn record(args: &RecordArgs) -> anyhow::Result<()> {
+    let gi = crate::cli::gi_settings(&args.settings, args.gi).map_err(|e| anyhow!("--set {e}"))?;
+    let level_path = args.level.clone().unwrap_or_else(crate::default_level);
+    let level = engine::scene::load_level(&level_path)?;
+    let collision = crate::sim::level_collision(&level)?;
+    let seed = args.seed.unwrap_or_else(recording::fresh_seed);
+    let tick_rate = FixedClock::DEFAULT_TICK_RATE;
+    let header = recording::header(&level, recording::level_id(&level, &level_path), tick_rate, seed, &gi);
+    let recorder = Recorder::new(header, args.out.clone());
+    // Writing the empty replay first finds an unwritable --out before anything is played.
+    recorder.save()?;
+    let sim = Simulation::new(&level, collision, tick_rate, seed);
+    let mut app = GameWindow::new(level, sim, TickSource::live(Some(recorder)), gi);
+    let played = engine::window::run("Headlamp — recording", &mut app);
+    if let TickSource::Live { recorder: Some(r), .. } = &app.source {
+        r.save()?;
+        println!("wrote {} ({} ticks, final hash {:016x})", r.path.display(), r.tick_count(), app.sim.state.hash());
+    }
+    played
+}
+
+pub fn replay(args: &ReplayArgs) -> anyhow::Result<()> {
+    let loaded = LoadedReplay::open(&args.file, args.level.as_deref())?;
+    if args.verify {
+        let end = loaded.verify()?;
+        println!("ok ticks={}", end.tick);
+        return Ok(());
+    }
+    if args.headless {
+        let end = headless(&loaded, &args.snapshots, args.out_dir.as_deref(), args.size)?;
+        println!("ticks={} hash={:016x}", end.tick, end.hash());
+        return Ok(());
+    }
+    let sim = loaded.simulation()?;
+    let (level, gi) = (loaded.level.clone(), loaded.gi.clone());
+    let source = TickSource::Replay { replay: Box::new(loaded), next: 0, diverged: None };
+    let mut app = GameWindow::new(level, sim, source, gi);
+    engine::window::run("Headlamp — replay", &mut app)
+}
+
+/// Re-simulates a replay without a window, checking every tick's hash, and renders a PNG after
+/// each snapshot tick into `out_dir` as `tick_NNNNNN.png`.
+pub fn headless(
+    loaded: &LoadedReplay,
+    snapshots: &[u32],
+    out_dir: Option<&Path>,
+    size: (u32, u32),
+) -> anyhow::Result<WorldState> {
+    let ticks = loaded.commands.len() as u32;
+    if let Some(&late) = snapshots.iter().find(|&&t| t > ticks) {
+        bail!("--snapshots: tick {late} is past the end of {} ({ticks} ticks)", loaded.path.display());
+    }
+    let mut snapshots = snapshots.to_vec();
+    snapshots.sort_unstable();
+    snapshots.dedup();
+    let mut shooter = match (snapshots.is_empty(), out_dir) {
+        (true, _) => None,
+        (false, None) => bail!("--snapshots needs --out-dir to write them to"),
+        (false, Some(dir)) => Some(SnapshotRenderer::new(loaded, dir, size)?),
+    };
+    let mut sim = loaded.simulation()?;
+    let mut wanted = snapshots.iter().peekable();
+    for i in 0..=loaded.commands.len() {
+        while wanted.next_if_eq(&&(i as u32)).is_some() {
+            if let Some(s) = &mut shooter {
+                s.shoot(&sim.state)?;
+            }
+        }
+        if i < loaded.commands.len() {
+            loaded.step_checked(&mut sim, i).with_context(|| loaded.path.display().to_string())?;
+        }
+    }
+    Ok(sim.state)
+}
+
+/// Renders the game's view at given ticks to PNG files.
+struct SnapshotRenderer {
+    gpu: Gpu,
+    renderer: Renderer,
+    target: HeadlessTarget,
+    view: engine::frame::ViewState,
+    dir: PathBuf,
+}
+
+impl SnapshotRenderer {
+    fn new(loaded: &LoadedReplay, dir: &Path, size: (u32, u32)) -> anyhow::Result<Self> {
+        std::fs::create_dir_all(dir).with_context(|| format!("--out-dir {}", dir.display()))?;
+        let gpu = Gpu::headless()?;
+        let (plugins, _) = crate::plugins(loaded.gi.clone());
+        let renderer = Renderer::new(&gpu, &loaded.level.scene, plugins)?;
+        let target = HeadlessTarget::new(&gpu, size.0, size.1, ImageKind::Display);
+        let view = initial_view(&loaded.level, &ViewOverrides::default());
+        Ok(Self { gpu, renderer, target, view, dir: dir.to_owned() })
+    }
+
+    fn shoot(&mut self, state: &WorldState) -> anyhow::Result<()> {
+        crate::view::at(&mut self.view, state);
+        let image = self.target.render(&self.gpu, &mut self.renderer, &self.view)?;
+        let path = self.dir.join(snapshot_name(state.tick));
+        engine::output::save(&image, &path)?;
+        Ok(())
+    }
+}
+
+/// The file name `replay --headless --snapshots` gives the frame after `tick` ticks.
+pub fn snapshot_name(tick: u32) -> String {
+    format!("tick_{tick:06}.png")
+}
+
+/// Simulates a script's commands and writes them, with their hashes, as a replay.
+pub fn script(args: &ScriptArgs) -> anyhow::Result<()> {
+    let gi = crate::cli::gi_settings(&args.settings, args.gi).map_err(|e| anyhow!("--set {e}"))?;
+    let commands = crate::script::read(&args.script).map_err(|e| anyhow!(e))?;
+    let level = engine::scene::load_level(&args.level)?;
+    let recorder = record_commands(&level, &args.level, &commands, args.seed, &gi, args.out.clone())?;
+    recorder.save()?;
+    println!(
+        "wrote {} ({} ticks, final hash {:016x})",
+        args.out.display(),
+        recorder.tick_count(),
+        recorder.last_hash()
+    );
+    Ok(())
+}
+
+/// Runs `commands` from the level's start and records them as a replay would be recorded live.
+pub fn record_commands(
+    level: &engine::scene::Level,
+    level_path: &Path,
+    commands: &[TickCommand],
+    seed: u64,
+    gi: &plugin_gi::GiSettings,
+    out: PathBuf,
+) -> anyhow::Result<Recorder> {
+    let tick_rate = FixedClock::DEFAULT_TICK_RATE;
+    let header = recording::header(level, recording::level_id(level, level_path), tick_rate, seed, gi);
+    let mut sim = Simulation::new(level, crate::sim::level_collision(level)?, tick_rate, seed);
+    let mut recorder = Recorder::new(header, out);
+    for cmd in commands {
+        sim.step(cmd);
+        recorder.push(cmd, &sim.state);
+    }
+    Ok(recorder)
+}

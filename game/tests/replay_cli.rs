@@ -1,0 +1,164 @@
+//! `headlamp script`, `headlamp replay --verify` and `--headless` as a user runs them, and one
+//! clear line (never a panic, never a silently wrong replay) for every kind of bad replay.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn headlamp(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_headlamp")).args(args).output().expect("run headlamp")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("headlamp-replay-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn cellar() -> String {
+    format!("{}/../levels/cellar", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn stdout(out: &Output) -> String {
+    assert!(out.status.success(), "headlamp failed: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// One line on stderr, naming `needle`, exit code 1, no panic.
+fn refused(out: &Output, needle: &str) -> String {
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(1), "expected failure, got {:?}: {err}", out.status);
+    assert!(err.contains(needle), "expected '{needle}' in: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    err
+}
+
+fn script(dir: &Path, text: &str, level: &str) -> (PathBuf, String) {
+    let s = dir.join("walk.txt");
+    std::fs::write(&s, text).unwrap();
+    let replay = dir.join("walk.replay");
+    let out = stdout(&headlamp(&["script", s.to_str().unwrap(), "--level", level, "--out", replay.to_str().unwrap()]));
+    let hash = out.trim().rsplit(' ').next().unwrap().trim_end_matches(')').to_owned();
+    (replay, hash)
+}
+
+const WALK: &str = "# into the corridor and back\n50 forward\n1 jump\n30 turn 180 lamp toggle\n50 forward sprint\n";
+
+fn fnv(bytes: &[u8]) -> u64 {
+    let mut h = 0xcbf2_9ce4_8422_2325u64;
+    for &b in bytes {
+        h = (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+#[test]
+fn script_then_verify_then_headless() {
+    let dir = scratch("ok");
+    let (replay, hash) = script(&dir, WALK, &cellar());
+    let r = replay.to_str().unwrap();
+    assert_eq!(stdout(&headlamp(&["replay", r, "--verify"])).trim(), "ok ticks=131");
+    // The level is found by its id, as a user in the project folder would run it.
+    let out = stdout(&headlamp(&["replay", r, "--headless"]));
+    assert_eq!(out.trim(), format!("ticks=131 hash={hash}"));
+}
+
+#[test]
+fn headless_snapshots_are_pngs_of_the_game() {
+    let dir = scratch("snap");
+    let (replay, _) = script(&dir, WALK, &cellar());
+    let shots = dir.join("shots");
+    let out = headlamp(&[
+        "replay",
+        replay.to_str().unwrap(),
+        "--headless",
+        "--snapshots",
+        "0,50",
+        "--out-dir",
+        shots.to_str().unwrap(),
+        "--size",
+        "160x90",
+    ]);
+    assert!(stdout(&out).starts_with("ticks=131 hash="));
+    for t in ["tick_000000.png", "tick_000050.png"] {
+        let img = image::open(shots.join(t)).unwrap().to_rgba8();
+        assert_eq!(img.dimensions(), (160, 90));
+        assert!(img.pixels().filter(|p| p[0] > 8 || p[1] > 8 || p[2] > 8).count() > 1000, "{t} is black");
+    }
+    let a = image::open(shots.join("tick_000000.png")).unwrap().to_rgba8();
+    let b = image::open(shots.join("tick_000050.png")).unwrap().to_rgba8();
+    assert_ne!(a, b, "50 ticks of walking change the view");
+    let r = replay.to_str().unwrap();
+    refused(&headlamp(&["replay", r, "--headless", "--snapshots", "500", "--out-dir", "x"]), "past the end");
+    refused(&headlamp(&["replay", r, "--headless", "--snapshots", "5"]), "--out-dir");
+}
+
+#[test]
+fn damaged_replays_are_refused_by_name() {
+    let dir = scratch("bad");
+    let (replay, _) = script(&dir, WALK, &cellar());
+    let bytes = std::fs::read(&replay).unwrap();
+    let write = |name: &str, b: &[u8]| {
+        let p = dir.join(name);
+        std::fs::write(&p, b).unwrap();
+        p.to_str().unwrap().to_owned()
+    };
+
+    let cut = write("cut.replay", &bytes[..bytes.len() - 100]);
+    refused(&headlamp(&["replay", &cut, "--verify"]), "truncated");
+    refused(&headlamp(&["replay", &cut, "--headless"]), "cut.replay");
+
+    // One command byte changed (a step forward became a step back): the checksum catches it...
+    let tick0 = bytes.len() - 8 - 131 * 15;
+    let mut edited = bytes.clone();
+    edited[tick0 + 20 * 15] = (-127i8) as u8;
+    let e = write("edited.replay", &edited);
+    refused(&headlamp(&["replay", &e, "--verify"]), "checksum");
+    // ...and with the checksum forged to match, the state hashes do, naming the tick.
+    let n = edited.len();
+    let sum = fnv(&edited[..n - 8]);
+    edited[n - 8..].copy_from_slice(&sum.to_le_bytes());
+    let forged = write("forged.replay", &edited);
+    refused(&headlamp(&["replay", &forged, "--verify"]), "diverged at tick 21");
+    refused(&headlamp(&["replay", &forged, "--headless"]), "diverged at tick 21");
+
+    let mut future = bytes.clone();
+    future[8..12].copy_from_slice(&9u32.to_le_bytes());
+    let f = write("future.replay", &future);
+    refused(&headlamp(&["replay", &f, "--verify"]), "version 9");
+
+    let png = write("picture.replay", b"\x89PNG\r\n\x1a\n....");
+    refused(&headlamp(&["replay", &png, "--verify"]), "not a Headlamp replay");
+    refused(&headlamp(&["replay", dir.join("missing.replay").to_str().unwrap(), "--verify"]), "missing.replay");
+}
+
+#[test]
+fn a_changed_level_is_refused() {
+    let dir = scratch("level");
+    let level = dir.join("mycellar");
+    std::fs::create_dir_all(&level).unwrap();
+    for f in ["level.toml", "scene.gltf", "scene.bin"] {
+        std::fs::copy(Path::new(&cellar()).join(f), level.join(f)).unwrap();
+    }
+    let (replay, _) = script(&dir, WALK, level.to_str().unwrap());
+    let r = replay.to_str().unwrap();
+    let l = level.to_str().unwrap();
+    assert_eq!(stdout(&headlamp(&["replay", r, "--verify", "--level", l])).trim(), "ok ticks=131");
+    // Not shipped and not under ./levels: the replay cannot guess where it is.
+    refused(&headlamp(&["replay", r, "--verify"]), "'mycellar'");
+    let toml = std::fs::read_to_string(level.join("level.toml")).unwrap();
+    std::fs::write(level.join("level.toml"), toml.replace("exposure = 0.3", "exposure = 0.4")).unwrap();
+    refused(&headlamp(&["replay", r, "--verify", "--level", l]), "the level changed");
+}
+
+#[test]
+fn script_mistakes_name_the_line() {
+    let dir = scratch("script");
+    let s = dir.join("s.txt");
+    std::fs::write(&s, "60 forward\n10 forwrd\n").unwrap();
+    let out = dir.join("s.replay");
+    let o = headlamp(&["script", s.to_str().unwrap(), "--level", &cellar(), "--out", out.to_str().unwrap()]);
+    refused(&o, "s.txt:2: unknown action 'forwrd'");
+    assert!(!out.exists(), "no replay is written from a bad script");
+}
