@@ -7,11 +7,14 @@
 //!
 //! On failure the actual frame and a FLIP error map (magma colours) are written beside the
 //! golden as `NAME.actual.png` and `NAME.diff.png` (git-ignored).
-//! Set `HEADLAMP_UPDATE_GOLDENS=1` to (re)write the goldens from the current renderer instead.
+//! Set `HEADLAMP_UPDATE_GOLDENS=1` to (re)write the goldens from the current renderer instead
+//! (and the test replays from their scripts, see [`replay_files`]).
 
 use std::path::{Path, PathBuf};
 
 pub use engine;
+
+pub mod replay_files;
 
 /// Mean FLIP error above which a frame is judged different from its golden.
 pub const MEAN_FLIP_TOLERANCE: f32 = 0.02;
@@ -19,6 +22,11 @@ pub const UPDATE_ENV: &str = "HEADLAMP_UPDATE_GOLDENS";
 
 pub fn goldens_dir() -> PathBuf {
     PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/goldens"))
+}
+
+/// `HEADLAMP_UPDATE_GOLDENS` is set (and not 0): goldens and test replays are being re-made.
+pub fn updating_goldens() -> bool {
+    std::env::var_os(UPDATE_ENV).is_some_and(|v| v != "0")
 }
 
 /// Mean FLIP error between two equally sized images, and the error map.
@@ -39,7 +47,7 @@ pub fn flip_error(reference: &image::RgbaImage, test: &image::RgbaImage) -> (f32
 pub fn check_golden(name: &str, actual: &image::RgbaImage) -> Result<f32, String> {
     let dir = goldens_dir();
     let golden_path = dir.join(format!("{name}.png"));
-    if std::env::var_os(UPDATE_ENV).is_some_and(|v| v != "0") {
+    if updating_goldens() {
         std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         actual.save(&golden_path).map_err(|e| format!("{}: {e}", golden_path.display()))?;
         return Ok(0.0);
