@@ -21,6 +21,10 @@ use crate::recording::{Divergence, LoadedReplay, Recorder};
 use crate::settings_panel;
 use crate::sim::{Simulation, WorldState};
 
+/// A recording is also written every this many ticks (10 s), so a crash or a killed process
+/// loses at most the last few seconds.
+pub const AUTOSAVE_TICKS: u32 = 600;
+
 /// `headlamp play`.
 pub fn run(level_path: &Path) -> anyhow::Result<()> {
     let level = engine::scene::load_level(level_path)?;
@@ -92,6 +96,11 @@ impl GameWindow {
                     self.sim.step(&cmd);
                     if let Some(r) = recorder {
                         r.push(&cmd, &self.sim.state);
+                        if r.tick_count() % AUTOSAVE_TICKS == 0 {
+                            if let Err(e) = r.save() {
+                                log::error!("{e:#}");
+                            }
+                        }
                     }
                 }
                 TickSource::Replay { replay, next, diverged } => {
@@ -113,13 +122,13 @@ impl GameWindow {
         let tick = self.sim.state.tick;
         match &self.source {
             TickSource::Live { recorder: Some(r), .. } => {
-                format!("● recording {} — tick {tick} (close the window to save)", r.path.display())
+                format!("REC {} — tick {tick} (close the window to save)", r.path.display())
             }
             TickSource::Live { recorder: None, .. } => String::new(),
             TickSource::Replay { replay, diverged: Some(d), .. } => format!("{}: {d}", replay.path.display()),
             TickSource::Replay { replay, next, .. } => {
                 let end = if *next >= replay.commands.len() { " — finished" } else { "" };
-                format!("▶ replay {} — tick {tick} of {}{end}", replay.path.display(), replay.commands.len())
+                format!("REPLAY {} — tick {tick} of {}{end}", replay.path.display(), replay.commands.len())
             }
         }
     }
