@@ -105,6 +105,8 @@ impl GameWindow {
                 }
                 TickSource::Replay { replay, next, diverged } => {
                     if *next >= replay.commands.len() {
+                        // Finished: hold the last state instead of drawing between two.
+                        self.prev = self.sim.state;
                         break;
                     }
                     if let Err(d) = replay.step_checked(&mut self.sim, *next) {
@@ -241,5 +243,41 @@ mod tests {
         let (a, b) = (app.prev.player.eye(), app.sim.state.player.eye());
         let eye = app.view.camera.position;
         assert!(eye.distance(a) <= a.distance(b) + 1e-5 && eye.distance(b) <= a.distance(b) + 1e-5);
+    }
+
+    /// Watching a replay in the window runs exactly its ticks, ends on its last state, and
+    /// notices (and shows) a command that no longer gives the recorded state.
+    #[test]
+    fn watching_a_replay_runs_its_ticks_and_notices_divergence() {
+        let level_path = crate::default_level();
+        let level = engine::scene::load_level(&level_path).unwrap();
+        let commands = crate::script::parse("30 forward\n10 turn 20\n", Path::new("t.txt")).unwrap();
+        let path = std::env::temp_dir().join(format!("headlamp-watch-{}.replay", std::process::id()));
+        let gi = GiSettings::default();
+        let rec = crate::replay_cmd::record_commands(&level, &level_path, &commands, 1, &gi, path.clone()).unwrap();
+        rec.save().unwrap();
+        let watch = |tamper: bool| {
+            let mut loaded = LoadedReplay::open(&path, Some(&level_path)).unwrap();
+            if tamper {
+                loaded.commands[5].forward = -127;
+            }
+            let sim = loaded.simulation().unwrap();
+            let source = TickSource::Replay { replay: Box::new(loaded), next: 0, diverged: None };
+            let mut app = GameWindow::new(level.clone(), sim, source, gi.clone());
+            for _ in 0..60 {
+                app.update(&Input::default(), 0.05);
+            }
+            app
+        };
+        let app = watch(false);
+        assert_eq!(app.sim.state.tick, 40);
+        assert_eq!(app.sim.state.hash(), rec.last_hash());
+        assert_eq!(app.prev, app.sim.state, "a finished replay holds its last state");
+        assert!(matches!(app.source, TickSource::Replay { diverged: None, .. }));
+        assert!(app.status().ends_with("finished"), "{}", app.status());
+        let app = watch(true);
+        assert!(matches!(app.source, TickSource::Replay { diverged: Some(Divergence { tick: 6, .. }), .. }));
+        assert!(app.status().contains("diverged at tick 6"), "{}", app.status());
+        let _ = std::fs::remove_file(&path);
     }
 }
