@@ -8,11 +8,7 @@ use engine::window::WindowApp;
 use game::play::{GameWindow, TickSource};
 use game::recording::{self, LoadedReplay, Recorder};
 use game::sim::{Rng, Simulation, TickCommand};
-use headlamp_tests::{engine, replay_files};
-
-fn cellar() -> engine::scene::Level {
-    engine::scene::load_level(&replay_files::cellar_path()).unwrap_or_else(|e| panic!("{e}"))
-}
+use headlamp_tests::{cellar, cellar_path, engine, replay_files};
 
 /// Per-tick state hashes of `commands` from a fresh start (fresh collision geometry too).
 fn hashes(level: &engine::scene::Level, commands: &[TickCommand], seed: u64) -> Vec<u64> {
@@ -96,10 +92,10 @@ fn shipped_replays_are_their_scripts() {
 #[test]
 fn recording_live_then_verifying_agrees() {
     let level = cellar();
-    let level_path = replay_files::cellar_path();
+    let level_path = cellar_path();
     let gi = plugin_gi::GiSettings::default();
     let out = std::env::temp_dir().join(format!("headlamp-live-{}.replay", std::process::id()));
-    let header = recording::header(&level, recording::level_id(&level, &level_path), 60, 5, &gi);
+    let header = recording::header(&level, &level_path, 60, 5, &gi);
     let sim = Simulation::new(&level, game::sim::level_collision(&level).unwrap(), 60, 5);
     let mut app = GameWindow::new(level, sim, TickSource::live(Some(Recorder::new(header, out.clone()))), gi);
     let mut input = Input::default();

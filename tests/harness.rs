@@ -20,6 +20,15 @@ pub mod replay_files;
 pub const MEAN_FLIP_TOLERANCE: f32 = 0.02;
 pub const UPDATE_ENV: &str = "HEADLAMP_UPDATE_GOLDENS";
 
+pub fn cellar_path() -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../levels/cellar"))
+}
+
+/// The shipped level, loaded.
+pub fn cellar() -> engine::scene::Level {
+    engine::scene::load_level(&cellar_path()).unwrap_or_else(|e| panic!("{e}"))
+}
+
 pub fn goldens_dir() -> PathBuf {
     PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/goldens"))
 }

@@ -6,14 +6,9 @@ use engine::gpu::Gpu;
 use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::renderer::Renderer;
 use engine::start_view::{initial_view, ViewOverrides};
-use headlamp_tests::{check_golden, engine};
+use headlamp_tests::{cellar, check_golden, engine};
 
 const SIZE: (u32, u32) = (320, 180);
-
-fn cellar() -> engine::scene::Level {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../levels/cellar");
-    engine::scene::load_level(std::path::Path::new(path)).unwrap_or_else(|e| panic!("{e}"))
-}
 
 type Look = Option<(Vec3, Vec3)>;
 

@@ -10,10 +10,6 @@ pub fn replays_dir() -> PathBuf {
     PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/replays"))
 }
 
-pub fn cellar_path() -> PathBuf {
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../levels/cellar"))
-}
-
 /// Every script in `replays/`, sorted by name.
 pub fn script_names() -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(replays_dir())
@@ -34,11 +30,10 @@ pub fn script_names() -> Vec<String> {
 pub fn record_script(name: &str) -> Vec<u8> {
     let dir = replays_dir();
     let commands = game::script::read(&dir.join(format!("{name}.txt"))).unwrap_or_else(|e| panic!("{e}"));
-    let level_path = cellar_path();
-    let level = engine::scene::load_level(&level_path).unwrap_or_else(|e| panic!("{e}"));
+    let level = crate::cellar();
     let gi = plugin_gi::GiSettings::default();
     let out = dir.join(format!("{name}.replay"));
-    let recorder = game::replay_cmd::record_commands(&level, &level_path, &commands, 1, &gi, out).unwrap();
+    let recorder = game::replay_cmd::record_commands(&level, &crate::cellar_path(), &commands, 1, &gi, out).unwrap();
     recorder.writer().to_bytes()
 }
 

@@ -1,22 +1,9 @@
 //! `headlamp bench` as a user runs it: a short timedemo of the shipped level, its table, its
 //! JSON, and one clear line for bad input. Correctness of the figures, not speed.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-fn headlamp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_headlamp")).args(args).output().expect("run headlamp")
-}
-
-fn cellar() -> String {
-    format!("{}/../levels/cellar", env!("CARGO_MANIFEST_DIR"))
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("headlamp-bench-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use common::{cellar, headlamp, scratch};
 
 #[test]
 fn bench_of_the_cellar_prints_the_table_and_writes_json() {

@@ -3,17 +3,11 @@
 
 use std::f32::consts::PI;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn headlamp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_headlamp")).args(args).output().expect("run headlamp")
-}
+mod common;
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("headlamp-cli-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use common::{headlamp, scratch};
 
 fn khronos(file: &str) -> String {
     format!("{}/../../shared/testdata/khronos/{file}", env!("CARGO_MANIFEST_DIR"))

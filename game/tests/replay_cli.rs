@@ -2,22 +2,11 @@
 //! clear line (never a panic, never a silently wrong replay) for every kind of bad replay.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn headlamp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_headlamp")).args(args).output().expect("run headlamp")
-}
+mod common;
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("headlamp-replay-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn cellar() -> String {
-    format!("{}/../levels/cellar", env!("CARGO_MANIFEST_DIR"))
-}
+use common::{cellar, headlamp, scratch};
 
 fn stdout(out: &Output) -> String {
     assert!(out.status.success(), "headlamp failed: {}", String::from_utf8_lossy(&out.stderr));
@@ -44,14 +33,6 @@ fn script(dir: &Path, text: &str, level: &str) -> (PathBuf, String) {
 }
 
 const WALK: &str = "# into the corridor and back\n50 forward\n1 jump\n30 turn 180 lamp toggle\n50 forward sprint\n";
-
-fn fnv(bytes: &[u8]) -> u64 {
-    let mut h = 0xcbf2_9ce4_8422_2325u64;
-    for &b in bytes {
-        h = (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    h
-}
 
 #[test]
 fn script_then_verify_then_headless() {
@@ -117,7 +98,9 @@ fn damaged_replays_are_refused_by_name() {
     refused(&headlamp(&["replay", &e, "--verify"]), "checksum");
     // ...and with the checksum forged to match, the state hashes do, naming the tick.
     let n = edited.len();
-    let sum = fnv(&edited[..n - 8]);
+    let mut sum = scene::Fnv1a::default();
+    sum.write(&edited[..n - 8]);
+    let sum = sum.finish();
     edited[n - 8..].copy_from_slice(&sum.to_le_bytes());
     let forged = write("forged.replay", &edited);
     refused(&headlamp(&["replay", &forged, "--verify"]), "diverged at tick 21");
