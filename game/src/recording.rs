@@ -12,20 +12,21 @@ use scene::Level;
 use crate::sim::{Simulation, TickCommand, WorldState};
 
 /// A level's id in a replay: its folder's name (or a bare scene file's name).
-pub fn level_id(level: &Level, path: &Path) -> String {
+fn level_id(level: &Level, path: &Path) -> String {
     let base = level.root.as_deref().unwrap_or(path);
     base.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| level.name.clone())
 }
 
-/// The header of a new recording: the GI settings ride along so a replay renders as it was seen.
-pub fn header(level: &Level, level_id: String, tick_rate: u32, seed: u64, gi: &GiSettings) -> ReplayHeader {
+/// The header of a new recording of `level`, loaded from `level_path`: the GI settings ride
+/// along so a replay renders as it was seen.
+pub fn header(level: &Level, level_path: &Path, tick_rate: u32, seed: u64, gi: &GiSettings) -> ReplayHeader {
     let mut settings = vec![("gi.enabled".to_owned(), gi.enabled.to_string())];
     for f in GiSettings::FIELDS {
         let value = gi.get(f.name).expect("every listed field has a value");
         settings.push((format!("gi.{}", f.name), value.to_string()));
     }
     ReplayHeader {
-        level_id,
+        level_id: level_id(level, level_path),
         level_hash: level.content_hash,
         tick_rate,
         seed,

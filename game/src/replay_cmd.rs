@@ -23,7 +23,7 @@ pub fn record(args: &RecordArgs) -> anyhow::Result<()> {
     let collision = crate::sim::level_collision(&level)?;
     let seed = args.seed.unwrap_or_else(recording::fresh_seed);
     let tick_rate = FixedClock::DEFAULT_TICK_RATE;
-    let header = recording::header(&level, recording::level_id(&level, &level_path), tick_rate, seed, &gi);
+    let header = recording::header(&level, &level_path, tick_rate, seed, &gi);
     let recorder = Recorder::new(header, args.out.clone());
     // Writing the empty replay first finds an unwritable --out before anything is played.
     recorder.save()?;
@@ -151,7 +151,7 @@ pub fn record_commands(
     out: PathBuf,
 ) -> anyhow::Result<Recorder> {
     let tick_rate = FixedClock::DEFAULT_TICK_RATE;
-    let header = recording::header(level, recording::level_id(level, level_path), tick_rate, seed, gi);
+    let header = recording::header(level, level_path, tick_rate, seed, gi);
     let mut sim = Simulation::new(level, crate::sim::level_collision(level)?, tick_rate, seed);
     let mut recorder = Recorder::new(header, out);
     for cmd in commands {

@@ -4,12 +4,8 @@
 use engine::camera::yaw_pitch_rotation;
 use engine::frame::ViewState;
 
-use crate::sim::command::ANGLE_UNITS_PER_TURN;
+use crate::sim::command::radians;
 use crate::sim::WorldState;
-
-fn radians(units: f32) -> f32 {
-    units * std::f32::consts::TAU / ANGLE_UNITS_PER_TURN
-}
 
 /// Blends yaw the short way round.
 fn yaw_between(a: u16, b: u16, t: f32) -> f32 {

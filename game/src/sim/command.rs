@@ -63,9 +63,14 @@ impl TickCommand {
     }
 }
 
-/// Radians → angle units, rounded (for scripts and mouse input).
+/// Radians → angle units, fractional (scripts and mouse input round them).
 pub fn angle_units(radians: f32) -> f32 {
     radians * ANGLE_UNITS_PER_TURN / std::f32::consts::TAU
+}
+
+/// Angle units → radians.
+pub fn radians(units: f32) -> f32 {
+    units * (std::f32::consts::TAU / ANGLE_UNITS_PER_TURN)
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 use glam::Vec3;
 use physics::{CharacterBody, CharacterConfig, CharacterMove};
 
-use super::command::{buttons, TickCommand, ANGLE_UNITS_PER_TURN};
+use super::command::{buttons, radians, TickCommand};
 
 /// Walking speeds, m/s.
 pub const WALK_SPEED: f32 = 4.0;
@@ -52,7 +52,7 @@ impl Player {
             WALK_SPEED
         };
         // libm, not std: the same bits on every platform and libc.
-        let yaw = self.yaw as f32 * (std::f32::consts::TAU / ANGLE_UNITS_PER_TURN);
+        let yaw = radians(self.yaw as f32);
         let (sin, cos) = (libm::sinf(yaw), libm::cosf(yaw));
         let forward = Vec3::new(-sin, 0.0, -cos);
         let right = Vec3::new(cos, 0.0, -sin);
