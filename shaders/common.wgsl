@@ -14,12 +14,15 @@ struct Globals {
     lamp_pos: vec4f,
     // rgb: P · colour of the lamp.
     lamp_intensity: vec4f,
-    // width, height, 1/width, 1/height of the view.
+    // width, height, 1/width, 1/height of the view as rendered (the output × the render scale).
     viewport: vec4f,
     // x: exposure; y: number of punctual lights; z: 1 when the headlamp is detached (its shadow
     // map `lamp.depth` is valid); w: size of a lamp-map texel per metre of distance from the
     // lamp, 2·tan(fov/2)/LAMP_MAP_SIZE (0 when attached).
     params: vec4f,
+    // rgb: radiant intensity (W/sr) of the camera flash, an isotropic point emitter at
+    // camera_pos; 0 when off.
+    camera_flash: vec4f,
 };
 
 // A punctual light. kind: 0 point, 1 spot, 2 directional.

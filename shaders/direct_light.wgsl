@@ -1,4 +1,5 @@
-// Direct light pass: L_d = ρ/π · I(ω) · max(0, n·l) / d² from the headlamp and every punctual light.
+// Direct light pass: L_d = ρ/π · I(ω) · max(0, n·l) / d² from the headlamp, the camera flash
+// and every punctual light.
 #include "common.wgsl"
 
 @group(1) @binding(0) var gbuffer_albedo: texture_2d<f32>;
@@ -97,6 +98,13 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
             lamp *= lamp_visibility(x, n, l, sqrt(d2));
         }
         e += lamp;
+    }
+    // The camera flash, isotropic at the eye. No shadow test: every point the eye sees has a
+    // clear line to a light at the eye.
+    if any(globals.camera_flash.rgb > vec3f(0.0)) {
+        let to_eye = globals.camera_pos.xyz - x;
+        let d2 = max(dot(to_eye, to_eye), 1e-8);
+        e += globals.camera_flash.rgb * max(0.0, dot(n, to_eye * inverseSqrt(d2))) / d2;
     }
     let count = u32(globals.params.y);
     for (var i = 0u; i < count; i++) {

@@ -15,19 +15,34 @@ struct GBufferOut {
     @location(3) emissive: vec4f,
 };
 
-@fragment
-fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
-    let albedo = surface_albedo(in);
+// The G-buffer texel of a surface point; ρ and emitted radiance from the material or instance.
+fn gbuffer_texel(world: vec3f, normal: vec3f, front: bool, albedo: vec3f, emissive: vec3f) -> GBufferOut {
     // Surfaces are lit on the side the viewer sees: single-sided walls of any winding work.
-    var n = normalize(in.normal);
+    var n = normalize(normal);
     if !front {
         n = -n;
     }
-    let view_depth = -(globals.view * vec4f(in.world, 1.0)).z;
+    let view_depth = -(globals.view * vec4f(world, 1.0)).z;
     var out: GBufferOut;
     out.albedo = vec4f(albedo, 1.0);
     out.normal = vec4f(n, 1.0);
-    out.position = vec4f(in.world, view_depth);
-    out.emissive = vec4f(material.emissive.rgb, 1.0);
+    out.position = vec4f(world, view_depth);
+    out.emissive = vec4f(emissive, 1.0);
     return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
+    return gbuffer_texel(in.world, in.normal, front, surface_albedo(in), material.emissive.rgb);
+}
+
+// Dynamic instances: same targets, colours from the instance instead of a material.
+@vertex
+fn vs_instance(v: VertexIn, i: InstanceIn) -> InstanceOut {
+    return instance_vertex(v, i, globals.view_proj);
+}
+
+@fragment
+fn fs_instance(in: InstanceOut, @builtin(front_facing) front: bool) -> GBufferOut {
+    return gbuffer_texel(in.world, in.normal, front, in.base_color, in.emissive);
 }

@@ -16,19 +16,34 @@ struct LampOut {
     @location(2) position: vec4f,
 };
 
-@fragment
-fn fs_main(in: VertexOut) -> LampOut {
-    let albedo = surface_albedo(in);
+// The lamp-view texel of a surface point of albedo ρ.
+fn lamp_texel(world: vec3f, normal: vec3f, albedo: vec3f) -> LampOut {
     // The side the lamp sees, whatever the winding: n·(lamp − x) ≥ 0.
-    var n = normalize(in.normal);
-    if dot(n, globals.lamp_pos.xyz - in.world) < 0.0 {
+    var n = normalize(normal);
+    if dot(n, globals.lamp_pos.xyz - world) < 0.0 {
         n = -n;
     }
     // The lamp's projection is a perspective one: clip w is the distance along its view axis.
-    let axis_distance = (globals.lamp_view_proj * vec4f(in.world, 1.0)).w;
+    let axis_distance = (globals.lamp_view_proj * vec4f(world, 1.0)).w;
     var out: LampOut;
     out.albedo = vec4f(albedo, 1.0);
     out.normal = vec4f(n, 1.0);
-    out.position = vec4f(in.world, axis_distance);
+    out.position = vec4f(world, axis_distance);
     return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> LampOut {
+    return lamp_texel(in.world, in.normal, surface_albedo(in));
+}
+
+// Dynamic instances: they shadow the lamp and reflect its light like the level.
+@vertex
+fn vs_instance(v: VertexIn, i: InstanceIn) -> InstanceOut {
+    return instance_vertex(v, i, globals.lamp_view_proj);
+}
+
+@fragment
+fn fs_instance(in: InstanceOut) -> LampOut {
+    return lamp_texel(in.world, in.normal, in.base_color);
 }

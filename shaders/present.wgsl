@@ -4,8 +4,11 @@
 
 struct PresentParams {
     // x: view (0 radiance, 1 albedo, 2 normal, 3 depth); y: 1 = write linear values;
-    // z: 1 = encode sRGB in the shader (output format is not an sRGB format).
+    // z: 1 = encode sRGB in the shader (output format is not an sRGB format); w: 1 = upsample
+    // bilinearly (a view rendered at a reduced render scale).
     mode: vec4u,
+    // Output width, height, 1/width, 1/height.
+    output: vec4f,
 };
 
 @group(1) @binding(0) var source: texture_2d<f32>;
@@ -22,12 +25,32 @@ fn linear_to_srgb(c: vec3f) -> vec3f {
     return select(hi, lo, c <= vec3f(0.0031308));
 }
 
+// The source at `p` (texels, centres at +0.5) interpolated between its four nearest texels,
+// edges clamped. By hand: sources may be unfilterable (Rgba32Float).
+fn bilinear(p: vec2f) -> vec4f {
+    let last = vec2i(textureDimensions(source)) - 1;
+    let q = p - 0.5;
+    let base = vec2i(floor(q));
+    let f = q - floor(q);
+    let t00 = textureLoad(source, clamp(base, vec2i(0), last), 0);
+    let t10 = textureLoad(source, clamp(base + vec2i(1, 0), vec2i(0), last), 0);
+    let t01 = textureLoad(source, clamp(base + vec2i(0, 1), vec2i(0), last), 0);
+    let t11 = textureLoad(source, clamp(base + vec2i(1, 1), vec2i(0), last), 0);
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
+}
+
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
-    // Sources of another size than the output (the fixed-size lamp maps) are scaled to fit,
-    // nearest texel; same-sized ones map texel to pixel.
-    let scale = vec2f(textureDimensions(source)) * globals.viewport.zw;
-    let value = textureLoad(source, vec2i(in.position.xy * scale), 0);
+    // Sources of another size than the output (the fixed-size lamp maps, views rendered at a
+    // reduced scale) are scaled to fit, nearest texel unless upsampling; same-sized ones map
+    // texel to pixel.
+    let scale = vec2f(textureDimensions(source)) * params.output.zw;
+    var value: vec4f;
+    if params.mode.w == 1u {
+        value = bilinear(in.position.xy * scale);
+    } else {
+        value = textureLoad(source, vec2i(in.position.xy * scale), 0);
+    }
     let view = params.mode.x;
     if params.mode.y == 1u {
         // Linear: radiance, albedo, the unit normal, or depth in metres as stored.

@@ -4,6 +4,7 @@ use scene::PunctualLight;
 
 use crate::camera::Camera;
 use crate::globals::CoreLayouts;
+use crate::gpu_instances::GpuInstances;
 use crate::gpu_scene::GpuScene;
 use crate::headlamp::{Headlamp, LampFrustum};
 
@@ -15,15 +16,45 @@ pub struct ViewState {
     pub lights: Vec<PunctualLight>,
     /// Multiplies linear radiance before tonemapping.
     pub exposure: f32,
+    /// Meshes placed this frame (enemies, pickups, marks), drawn into the camera's G-buffer
+    /// and the lamp's view like the level itself.
+    pub instances: Vec<Instance>,
+    /// Radiant intensity (W/sr, RGB) of an isotropic point emitter at the camera position (a
+    /// muzzle flash); zero is off. It lights what the camera sees directly, with no shadow
+    /// test (nothing the eye sees is hidden from a light at the eye). While the headlamp is
+    /// attached it also feeds the GI, the camera G-buffer being the reflective shadow map;
+    /// while the lamp is detached the reflective shadow map is the lamp's view, which cannot
+    /// hold the flash's light, so the flash then lights directly only.
+    pub camera_flash: [f32; 3],
+}
+
+/// A mesh added with `Renderer::add_mesh`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct MeshId(pub u32);
+
+/// One placement of a mesh for one frame. Instances naming a mesh the renderer does not know
+/// are not drawn.
+#[derive(Clone, Copy, Debug)]
+pub struct Instance {
+    pub mesh: MeshId,
+    /// Model to world (affine).
+    pub transform: glam::Mat4,
+    /// Linear diffuse albedo ρ.
+    pub base_color: [f32; 3],
+    /// Emitted radiance (W·sr⁻¹·m⁻²), as a material's `emissive`.
+    pub emissive: [f32; 3],
 }
 
 /// The frame as passes see it while recording.
 pub struct Frame<'a> {
-    /// Size of the view in pixels.
+    /// Size of the view in pixels: the render size, i.e. the output's times the render scale.
+    /// View-sized graph textures have this size; the present pass scales to the output.
     pub size: (u32, u32),
     pub view: &'a ViewState,
     pub lamp: LampFrustum,
     pub scene: &'a GpuScene,
+    /// This frame's instances, already uploaded.
+    pub instances: &'a GpuInstances,
     pub layouts: &'a CoreLayouts,
     /// Group 0 of every core shader: globals, lights, the lamp distribution texture, a sampler.
     pub globals: &'a wgpu::BindGroup,

@@ -95,6 +95,7 @@ struct GlobalsUniform {
     lamp_intensity: Vec4,
     viewport: Vec4,
     params: Vec4,
+    camera_flash: Vec4,
 }
 
 #[repr(C)]
@@ -162,9 +163,18 @@ impl GlobalsGpu {
         Self { uniform, lights, lights_capacity: 4, distribution, distribution_key: None, sampler, bind_group }
     }
 
-    /// Uploads this frame's uniforms; re-creates the lights buffer or distribution texture
-    /// only when they no longer fit.
-    pub fn update(&mut self, gpu: &Gpu, layouts: &CoreLayouts, view: &ViewState, lamp: &LampFrustum, size: (u32, u32)) {
+    /// Uploads this frame's uniforms for a view rendered at `size` pixels and shown with
+    /// `aspect` (the output's, which a reduced render scale may round slightly differently);
+    /// re-creates the lights buffer or distribution texture only when they no longer fit.
+    pub fn update(
+        &mut self,
+        gpu: &Gpu,
+        layouts: &CoreLayouts,
+        view: &ViewState,
+        lamp: &LampFrustum,
+        size: (u32, u32),
+        aspect: f32,
+    ) {
         let device = &gpu.device;
         let mut rebind = false;
         if view.lights.len() > self.lights_capacity {
@@ -194,7 +204,6 @@ impl GlobalsGpu {
             self.bind_group = bind(device, layouts, &self.uniform, &self.lights, &self.distribution, &self.sampler);
         }
 
-        let aspect = size.0 as f32 / size.1.max(1) as f32;
         let view_proj = view.camera.view_projection(aspect);
         let lamp_on = if view.headlamp.on { 1.0 } else { 0.0 };
         // Detached: the direct light pass tests `lamp.depth`, whose texels cover
@@ -214,6 +223,7 @@ impl GlobalsGpu {
             lamp_intensity: view.headlamp.intensity().extend(0.0),
             viewport: Vec4::new(size.0 as f32, size.1 as f32, 1.0 / size.0 as f32, 1.0 / size.1 as f32),
             params: Vec4::new(view.exposure, view.lights.len() as f32, detached, lamp_texel),
+            camera_flash: glam::Vec3::from(view.camera_flash).extend(0.0),
         };
         gpu.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
         if !view.lights.is_empty() {

@@ -30,6 +30,14 @@ impl Input {
     pub fn mouse_pressed(&self, b: MouseButton) -> bool {
         self.mouse_pressed.contains(&b)
     }
+    /// Every key that went down since the last frame, in order (e.g. "press a key to rebind").
+    pub fn pressed_keys(&self) -> &[KeyCode] {
+        &self.pressed
+    }
+    /// Every mouse button that went down since the last frame, in order.
+    pub fn pressed_buttons(&self) -> &[MouseButton] {
+        &self.mouse_pressed
+    }
 
     /// A key went down or up. The window runner calls these from window events; tests drive
     /// an `Input` the same way.

@@ -4,13 +4,14 @@
 use std::cell::RefCell;
 use std::rc::Rc;
 
-use scene::Scene;
+use scene::{Scene, Vertex};
 
-use crate::frame::{Frame, ViewState};
+use crate::frame::{Frame, MeshId, ViewState};
 use crate::globals::{CoreLayouts, GlobalsGpu};
 use crate::gpu::Gpu;
+use crate::gpu_instances::GpuInstances;
 use crate::gpu_scene::GpuScene;
-use crate::graph::{GraphError, ImportedTexture, RenderGraph};
+use crate::graph::{GraphError, ImportedTexture, RenderGraph, SizeRule};
 use crate::passes::{
     names, CompositePass, DirectLightPass, GBufferPass, LampViewPass, OutputView, PresentPass, PresentSettings,
 };
@@ -20,10 +21,13 @@ pub struct Renderer {
     layouts: CoreLayouts,
     globals: GlobalsGpu,
     scene: GpuScene,
+    instances: GpuInstances,
     graph: RenderGraph,
     present: Rc<RefCell<PresentSettings>>,
     views: Vec<ViewEntry>,
     plugins: Vec<Box<dyn Plugin>>,
+    /// View-sized graph textures are this fraction of the output's size.
+    render_scale: f32,
 }
 
 impl Renderer {
@@ -61,7 +65,25 @@ impl Renderer {
             log::info!("plugin '{}' built", plugin.name());
         }
         graph.compile()?;
-        Ok(Self { layouts, globals, scene: gpu_scene, graph, present, views, plugins })
+        let instances = GpuInstances::new(gpu);
+        Ok(Self { layouts, globals, scene: gpu_scene, instances, graph, present, views, plugins, render_scale: 1.0 })
+    }
+
+    /// Uploads a mesh that [`crate::frame::Instance`]s can place (see [`crate::primitives`]).
+    /// Panics if an index is out of range of `vertices`.
+    pub fn add_mesh(&mut self, gpu: &Gpu, vertices: &[Vertex], indices: &[u32]) -> MeshId {
+        self.instances.add_mesh(gpu, vertices, indices)
+    }
+
+    /// Renders every view-sized graph texture at `scale` × the output size (clamped to
+    /// 0.25..=1) from the next frame on; the present pass scales the chosen view up to the
+    /// output, bilinearly for radiance and colour views. 1, the default, renders at full size.
+    pub fn set_render_scale(&mut self, scale: f32) {
+        self.render_scale = if scale.is_nan() { 1.0 } else { scale.clamp(0.25, 1.0) };
+    }
+
+    pub fn render_scale(&self) -> f32 {
+        self.render_scale
     }
 
     pub fn views(&self) -> &[ViewEntry] {
@@ -107,11 +129,22 @@ impl Renderer {
         target: &wgpu::Texture,
         target_view: &wgpu::TextureView,
     ) -> Result<wgpu::SubmissionIndex, GraphError> {
-        let size = (target.width(), target.height());
-        let lamp = view.headlamp.frustum(&view.camera, size.0 as f32 / size.1.max(1) as f32);
-        self.globals.update(gpu, &self.layouts, view, &lamp, size);
-        let frame =
-            Frame { size, view, lamp, scene: &self.scene, layouts: &self.layouts, globals: &self.globals.bind_group };
+        let output = (target.width(), target.height());
+        let size = SizeRule::ViewScaled(self.render_scale).resolve(output);
+        // Projections keep the output's aspect: the scaled size is rounded to whole pixels.
+        let aspect = output.0 as f32 / output.1.max(1) as f32;
+        let lamp = view.headlamp.frustum(&view.camera, aspect);
+        self.globals.update(gpu, &self.layouts, view, &lamp, size, aspect);
+        self.instances.upload(gpu, &view.instances);
+        let frame = Frame {
+            size,
+            view,
+            lamp,
+            scene: &self.scene,
+            instances: &self.instances,
+            layouts: &self.layouts,
+            globals: &self.globals.bind_group,
+        };
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
         let imports = [ImportedTexture { name: names::OUTPUT, texture: target, view: target_view }];
         self.graph.execute(gpu, &frame, &mut encoder, &imports)?;

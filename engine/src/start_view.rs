@@ -69,7 +69,14 @@ pub fn initial_view(level: &Level, overrides: &ViewOverrides) -> ViewState {
     let power = profile.power;
     let headlamp = Headlamp::new(profile);
     let exposure = level.exposure.unwrap_or_else(|| auto_exposure(&level.scene, &camera, power));
-    ViewState { camera, headlamp, lights: level.scene.lights.clone(), exposure }
+    ViewState {
+        camera,
+        headlamp,
+        lights: level.scene.lights.clone(),
+        exposure,
+        instances: vec![],
+        camera_flash: [0.0; 3],
+    }
 }
 
 /// An exposure under which a white surface facing the lamp at the distance of the scene's

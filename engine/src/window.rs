@@ -2,9 +2,11 @@
 //! turns events into [`Input`], and asks the app for a frame. Resizes, minimising to 0×0 and
 //! lost or outdated surfaces are handled here so no app has to.
 //!
-//! The mouse: a click captures it (mouse look), Esc or losing focus releases it. While it is
-//! released, events go to the UI first; a click or key the UI consumed (a click on a UI
-//! window, typing into a text field) neither captures the mouse nor reaches [`Input`].
+//! The mouse: by default a click captures it (mouse look), Esc or losing focus releases it; an
+//! app can take over with [`WindowApp::capture_wanted`]. While it is released, events go to
+//! the UI first; a click or key the UI consumed (a click on a UI window, typing into a text
+//! field) neither captures the mouse nor reaches [`Input`] — except Esc, which always reaches
+//! it (apps open and close their menus with it).
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -31,6 +33,18 @@ pub trait WindowApp {
     fn release_mouse_requested(&mut self) -> bool {
         false
     }
+    /// Polled each frame after `update`: Some(true) grabs the mouse (raw look), Some(false)
+    /// frees it and a click no longer grabs it, None keeps today's behaviour (a click grabs,
+    /// Esc frees). Losing focus always frees it; Some(true) grabs again once focus is back.
+    fn capture_wanted(&self) -> Option<bool> {
+        None
+    }
+    /// Polled each frame: whether presentation waits for vertical blank (AutoVsync vs
+    /// AutoNoVsync, which falls back from Immediate to Mailbox to Fifo); a change reconfigures
+    /// the surface.
+    fn vsync(&self) -> bool {
+        true
+    }
     /// Builds this frame's UI with egui (after `update`, before `render`); the loop paints it
     /// over what `render` drew. The default shows nothing.
     fn ui(&mut self, _ctx: &egui::Context) {}
@@ -55,6 +69,8 @@ pub fn run<A: WindowApp>(title: &str, app: &mut A) -> anyhow::Result<()> {
         input: Input::default(),
         last: Instant::now(),
         error: None,
+        capture: None,
+        focused: true,
     };
     event_loop.run_app(&mut runner).context("window event loop failed")?;
     match runner.error {
@@ -69,6 +85,8 @@ struct WindowState {
     config: wgpu::SurfaceConfiguration,
     gpu: Gpu,
     ui: UiLayer,
+    /// What `config.present_mode` was chosen for.
+    vsync: bool,
     /// The format the UI is drawn in: the surface's without sRGB encoding where the adapter can
     /// view the surface that way (egui blends in gamma space), else the surface's own.
     ui_format: wgpu::TextureFormat,
@@ -81,6 +99,9 @@ struct Runner<'a, A: WindowApp> {
     input: Input,
     last: Instant,
     error: Option<anyhow::Error>,
+    /// The app's last [`WindowApp::capture_wanted`].
+    capture: Option<bool>,
+    focused: bool,
 }
 
 impl<A: WindowApp> Runner<'_, A> {
@@ -102,7 +123,8 @@ impl<A: WindowApp> Runner<'_, A> {
         if let Some(&srgb) = caps.formats.iter().find(|f| f.is_srgb()) {
             config.format = srgb;
         }
-        config.present_mode = wgpu::PresentMode::AutoVsync;
+        let vsync = self.app.vsync();
+        config.present_mode = present_mode(vsync);
         let mut ui_format = config.format;
         let surface_views = gpu.adapter.get_downlevel_capabilities().flags;
         if config.format.is_srgb() && surface_views.contains(wgpu::DownlevelFlags::SURFACE_VIEW_FORMATS) {
@@ -112,7 +134,7 @@ impl<A: WindowApp> Runner<'_, A> {
         surface.configure(&gpu.device, &config);
         self.app.init(&gpu, config.format)?;
         let ui = UiLayer::new(&gpu, &window, ui_format);
-        self.state = Some(WindowState { window, surface, config, gpu, ui, ui_format });
+        self.state = Some(WindowState { window, surface, config, gpu, ui, vsync, ui_format });
         Ok(())
     }
 
@@ -143,9 +165,21 @@ impl<A: WindowApp> Runner<'_, A> {
         if self.app.release_mouse_requested() && self.input.captured {
             self.set_captured(false);
         }
+        self.capture = self.app.capture_wanted();
+        if let Some(captured) = capture_change(self.capture, self.focused, self.input.captured) {
+            self.set_captured(captured);
+        }
         self.input.end_frame();
 
+        let vsync = self.app.vsync();
         let Some(state) = &mut self.state else { return Ok(()) };
+        if vsync != state.vsync {
+            state.vsync = vsync;
+            state.config.present_mode = present_mode(vsync);
+            if state.config.width > 0 && state.config.height > 0 {
+                state.surface.configure(&state.gpu.device, &state.config);
+            }
+        }
         if state.config.width == 0 || state.config.height == 0 {
             return Ok(()); // minimised: nothing to draw into
         }
@@ -192,6 +226,21 @@ impl<A: WindowApp> Runner<'_, A> {
     }
 }
 
+/// The capture an app's [`WindowApp::capture_wanted`] asks for, when it differs from the
+/// current one. A window without focus never holds the mouse.
+fn capture_change(wanted: Option<bool>, focused: bool, captured: bool) -> Option<bool> {
+    let target = wanted? && focused;
+    (target != captured).then_some(target)
+}
+
+fn present_mode(vsync: bool) -> wgpu::PresentMode {
+    if vsync {
+        wgpu::PresentMode::AutoVsync
+    } else {
+        wgpu::PresentMode::AutoNoVsync
+    }
+}
+
 impl<A: WindowApp> ApplicationHandler for Runner<'_, A> {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.state.is_none() {
@@ -218,17 +267,22 @@ impl<A: WindowApp> ApplicationHandler for Runner<'_, A> {
                     }
                 }
             }
-            WindowEvent::Focused(false) => {
-                self.input.release_all();
-                self.set_captured(false);
+            WindowEvent::Focused(focused) => {
+                self.focused = focused;
+                if !focused {
+                    self.input.release_all();
+                    self.set_captured(false);
+                }
             }
             WindowEvent::KeyboardInput { event, .. } => {
                 if let PhysicalKey::Code(code) = event.physical_key {
                     let down = event.state == ElementState::Pressed;
-                    if down && ui_consumed {
+                    let escape = code == KeyCode::Escape;
+                    if down && ui_consumed && !escape {
                         return; // typed into the UI
                     }
-                    if code == KeyCode::Escape && down && self.input.captured {
+                    // Only the default mode frees the mouse itself; an app that chose says so.
+                    if escape && down && self.input.captured && self.capture.is_none() {
                         self.set_captured(false);
                     }
                     self.input.key_event(code, down, event.repeat);
@@ -239,7 +293,7 @@ impl<A: WindowApp> ApplicationHandler for Runner<'_, A> {
                 if down && ui_consumed {
                     return; // a click on the UI
                 }
-                if down && button == MouseButton::Left && !self.input.captured {
+                if down && button == MouseButton::Left && !self.input.captured && self.capture.is_none() {
                     self.set_captured(true);
                 } else {
                     self.input.mouse_button(button, down);
@@ -269,5 +323,24 @@ impl<A: WindowApp> ApplicationHandler for Runner<'_, A> {
         if let Some(state) = &self.state {
             state.window.request_redraw();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_app_that_chooses_gets_its_capture_while_focused_and_none_leaves_it_alone() {
+        assert_eq!(capture_change(None, true, false), None);
+        assert_eq!(capture_change(None, true, true), None);
+        assert_eq!(capture_change(Some(true), true, false), Some(true));
+        assert_eq!(capture_change(Some(true), true, true), None);
+        assert_eq!(capture_change(Some(true), false, false), None, "no grab without focus");
+        assert_eq!(capture_change(Some(true), false, true), Some(false));
+        assert_eq!(capture_change(Some(false), true, true), Some(false));
+        assert_eq!(capture_change(Some(false), true, false), None);
+        assert_eq!(present_mode(true), wgpu::PresentMode::AutoVsync);
+        assert_eq!(present_mode(false), wgpu::PresentMode::AutoNoVsync);
     }
 }

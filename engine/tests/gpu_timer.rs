@@ -30,6 +30,8 @@ fn view() -> ViewState {
         headlamp: Headlamp::new(HeadlampProfile { fov_y, ..HeadlampProfile::default() }),
         lights: vec![],
         exposure: 1.0,
+        instances: vec![],
+        camera_flash: [0.0; 3],
     }
 }
 

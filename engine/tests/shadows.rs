@@ -80,7 +80,7 @@ fn detached(eye: Vec3, target: Vec3) -> Headlamp {
 }
 
 fn view(camera: Camera, headlamp: Headlamp) -> ViewState {
-    ViewState { camera, headlamp, lights: vec![], exposure: 1.0 }
+    ViewState { camera, headlamp, lights: vec![], exposure: 1.0, instances: vec![], camera_flash: [0.0; 3] }
 }
 
 fn gpu() -> Gpu {

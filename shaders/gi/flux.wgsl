@@ -1,6 +1,7 @@
 // GI flux pass: turns the lamp-view G-buffer into reflected flux per texel,
-// Φ = ρ · I(ω) · Ω_texel, and writes level 0 of the node quadtree. Attached, the lamp view
-// is the camera view, so the camera G-buffer is read directly (the article's key economy).
+// Φ = ρ · I(ω) · Ω_texel (I: the lamp, plus the camera flash while attached), and writes
+// level 0 of the node quadtree. Attached, the lamp view is the camera view, so the camera
+// G-buffer is read directly (the article's key economy).
 // For further bounces the source is the previous bounce's irradiance instead:
 // Φ = ρ · E · A_texel, A_texel = Ω_texel · d² / cos θ being the surface area the texel covers.
 #include "common.wgsl"
@@ -48,6 +49,12 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
             var intensity = vec3f(0.0);
             if globals.lamp_pos.w > 0.5 {
                 intensity = lamp_intensity_towards(x);
+            }
+            // Attached, the camera flash sits where the lamp does and sees what it sees, so
+            // its reflected flux is ρ·I_flash·Ω_texel too. Detached, this view is the lamp's
+            // and cannot tell what the flash lights: the flash then lights directly only.
+            if globals.params.z < 0.5 {
+                intensity += globals.camera_flash.rgb;
             }
             flux = rho * intensity * omega;
         } else {

@@ -1,6 +1,7 @@
 // GI brute-force reference: every texel of the full-resolution flux G-buffer is a reflection
 // light, with no merging and no cutoff; the indirect radiance ρ/π · E of each camera pixel is
-// summed over all of them. O(pixels × texels): for tests and `bench` at small sizes.
+// summed over all of them. O(pixels × texels): for tests and `bench` at small sizes. The
+// flux is flux.wgsl's, so it holds the same sources: the lamp and, attached, the camera flash.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 

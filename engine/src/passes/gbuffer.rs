@@ -4,6 +4,7 @@ use super::names::*;
 use super::HDR_FORMAT;
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
+use crate::gpu_instances::INSTANCE_LAYOUT;
 use crate::gpu_scene::VERTEX_LAYOUT;
 use crate::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
 
@@ -16,7 +17,7 @@ pub const POSITION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Floa
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 pub struct GBufferPass {
-    pipeline: wgpu::RenderPipeline,
+    pipelines: ScenePipelines,
 }
 
 impl GBufferPass {
@@ -24,25 +25,63 @@ impl GBufferPass {
         let device = &gpu.device;
         let module = crate::shader::module(device, "gbuffer", SHADER, &[]);
         let targets = [ALBEDO_FORMAT, HDR_FORMAT, POSITION_FORMAT, HDR_FORMAT];
-        let pipeline = scene_pipeline(device, "gbuffer", &module, layouts, &targets);
-        Self { pipeline }
+        Self { pipelines: ScenePipelines::new(device, "gbuffer", &module, layouts, &targets) }
     }
 }
 
-/// A pipeline rasterising the scene's meshes (vertex layout of `scene::Vertex`, material in
-/// group 1) into colour `targets` and a reversed-Z depth buffer (cleared to 0, nearer is
-/// greater). No culling: files come with either winding and single-sided walls, and each
-/// shader turns normals towards its viewer.
-pub fn scene_pipeline(
+/// The two pipelines rasterising a view: the level's meshes (`vs_main`/`fs_main`, vertex
+/// layout of `scene::Vertex`, material in group 1) and the frame's instances
+/// (`vs_instance`/`fs_instance`, the same vertices plus [`INSTANCE_LAYOUT`], no group 1), into
+/// the same colour `targets` and reversed-Z depth buffer (cleared to 0, nearer is greater).
+/// No culling: files come with either winding and single-sided walls, and each shader turns
+/// normals towards its viewer.
+pub struct ScenePipelines {
+    scene: wgpu::RenderPipeline,
+    instances: wgpu::RenderPipeline,
+}
+
+impl ScenePipelines {
+    pub fn new(
+        device: &wgpu::Device,
+        label: &str,
+        module: &wgpu::ShaderModule,
+        layouts: &CoreLayouts,
+        targets: &[wgpu::TextureFormat],
+    ) -> Self {
+        let scene = raster_pipeline(
+            device,
+            label,
+            module,
+            ("vs_main", "fs_main"),
+            &[Some(&layouts.globals), Some(&layouts.material)],
+            &[Some(VERTEX_LAYOUT)],
+            targets,
+        );
+        let instances = raster_pipeline(
+            device,
+            &format!("{label} instances"),
+            module,
+            ("vs_instance", "fs_instance"),
+            &[Some(&layouts.globals)],
+            &[Some(VERTEX_LAYOUT), Some(INSTANCE_LAYOUT)],
+            targets,
+        );
+        Self { scene, instances }
+    }
+}
+
+fn raster_pipeline(
     device: &wgpu::Device,
     label: &str,
     module: &wgpu::ShaderModule,
-    layouts: &CoreLayouts,
+    (vertex, fragment): (&str, &str),
+    groups: &[Option<&wgpu::BindGroupLayout>],
+    buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
     targets: &[wgpu::TextureFormat],
 ) -> wgpu::RenderPipeline {
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
-        bind_group_layouts: &[Some(&layouts.globals), Some(&layouts.material)],
+        bind_group_layouts: groups,
         immediate_size: 0,
     });
     let targets: Vec<Option<wgpu::ColorTargetState>> = targets.iter().map(|&format| Some(format.into())).collect();
@@ -51,9 +90,9 @@ pub fn scene_pipeline(
         layout: Some(&layout),
         vertex: wgpu::VertexState {
             module,
-            entry_point: Some("vs_main"),
+            entry_point: Some(vertex),
             compilation_options: Default::default(),
-            buffers: &[Some(VERTEX_LAYOUT)],
+            buffers,
         },
         primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
         depth_stencil: Some(wgpu::DepthStencilState {
@@ -66,7 +105,7 @@ pub fn scene_pipeline(
         multisample: wgpu::MultisampleState::default(),
         fragment: Some(wgpu::FragmentState {
             module,
-            entry_point: Some("fs_main"),
+            entry_point: Some(fragment),
             compilation_options: Default::default(),
             targets: &targets,
         }),
@@ -75,15 +114,10 @@ pub fn scene_pipeline(
     })
 }
 
-/// Records one pass drawing every mesh with a [`scene_pipeline`]: the graph textures `colors`
-/// cleared to transparent (w = 0 marks "no geometry") and `depth` cleared to 0 (reversed Z).
-pub fn draw_scene(
-    ctx: &mut PassContext<'_>,
-    label: &str,
-    pipeline: &wgpu::RenderPipeline,
-    colors: &[&str],
-    depth: &str,
-) {
+/// Records one pass drawing every mesh, then every instance, with [`ScenePipelines`]: the
+/// graph textures `colors` cleared to transparent (w = 0 marks "no geometry") and `depth`
+/// cleared to 0 (reversed Z). The one place the camera and lamp views are drawn from.
+pub fn draw_scene(ctx: &mut PassContext<'_>, label: &str, pipelines: &ScenePipelines, colors: &[&str], depth: &str) {
     let colors: Vec<Option<wgpu::RenderPassColorAttachment>> = colors
         .iter()
         .map(|name| {
@@ -110,9 +144,13 @@ pub fn draw_scene(
         occlusion_query_set: None,
         multiview_mask: None,
     });
-    pass.set_pipeline(pipeline);
+    pass.set_pipeline(&pipelines.scene);
     pass.set_bind_group(0, ctx.frame.globals, &[]);
     ctx.frame.scene.draw_all(&mut pass);
+    if !ctx.frame.instances.is_empty() {
+        pass.set_pipeline(&pipelines.instances);
+        ctx.frame.instances.draw_all(&mut pass);
+    }
 }
 
 impl RenderPass for GBufferPass {
@@ -130,6 +168,6 @@ impl RenderPass for GBufferPass {
 
     fn run(&mut self, ctx: &mut PassContext<'_>) {
         let colors = [GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION, GBUFFER_EMISSIVE];
-        draw_scene(ctx, "gbuffer", &self.pipeline, &colors, GBUFFER_DEPTH);
+        draw_scene(ctx, "gbuffer", &self.pipelines, &colors, GBUFFER_DEPTH);
     }
 }

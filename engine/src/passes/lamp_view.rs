@@ -37,19 +37,18 @@ fn lamp_texture(format: wgpu::TextureFormat) -> TextureDesc {
 }
 
 pub struct LampViewPass {
-    pipeline: wgpu::RenderPipeline,
+    pipelines: super::gbuffer::ScenePipelines,
 }
 
 impl LampViewPass {
     pub fn new(gpu: &Gpu, layouts: &CoreLayouts) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "lamp view", SHADER, &[]);
-        // Same rasterisation as the camera's G-buffer (no culling: single-sided walls must still
-        // block the lamp from either side; reversed Z). No rasteriser depth bias: the shadow
-        // test applies its own, in metres.
+        // Same rasterisation as the camera's G-buffer, instances included (no culling:
+        // single-sided walls must still block the lamp from either side; reversed Z). No
+        // rasteriser depth bias: the shadow test applies its own, in metres.
         let targets = [LAMP_ALBEDO_FORMAT, LAMP_NORMAL_FORMAT, LAMP_POSITION_FORMAT];
-        let pipeline = super::gbuffer::scene_pipeline(device, "lamp view", &module, layouts, &targets);
-        Self { pipeline }
+        Self { pipelines: super::gbuffer::ScenePipelines::new(device, "lamp view", &module, layouts, &targets) }
     }
 }
 
@@ -71,6 +70,6 @@ impl RenderPass for LampViewPass {
             return;
         }
         let colors = [LAMP_ALBEDO, LAMP_NORMAL, LAMP_POSITION];
-        super::gbuffer::draw_scene(ctx, "lamp view", &self.pipeline, &colors, LAMP_DEPTH);
+        super::gbuffer::draw_scene(ctx, "lamp view", &self.pipelines, &colors, LAMP_DEPTH);
     }
 }

@@ -44,6 +44,15 @@ pub struct PresentSettings {
     pub kind: OutputView,
 }
 
+/// `PresentParams` of shaders/present.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct PresentUniform {
+    mode: [u32; 4],
+    /// Output width, height, 1/width, 1/height.
+    output: [f32; 4],
+}
+
 pub struct PresentPass {
     settings: Rc<RefCell<PresentSettings>>,
     inputs: wgpu::BindGroupLayout,
@@ -64,7 +73,7 @@ impl PresentPass {
             pipelines: HashMap::new(),
             params: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("present params"),
-                size: 16,
+                size: std::mem::size_of::<PresentUniform>() as u64,
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             }),
@@ -83,13 +92,25 @@ impl RenderPass for PresentPass {
 
     fn run(&mut self, ctx: &mut PassContext<'_>) {
         let settings = self.settings.borrow().clone();
-        let format = ctx.texture(OUTPUT).format();
+        let output = ctx.texture(OUTPUT);
+        let format = output.format();
         // A float output is read back as linear values (EXR); anything else is a picture.
         let linear = format == wgpu::TextureFormat::Rgba32Float;
         // Non-sRGB 8-bit outputs (some swapchains) need the encoding done in the shader.
         let encode_srgb = !linear && !format.is_srgb();
-        let mode = [settings.kind.code(), linear as u32, encode_srgb as u32, 0];
-        ctx.gpu.queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&mode));
+        // A view-sized source rendered below the output's size (render scale < 1) is upsampled
+        // bilinearly where blending neighbours means something (radiance, colour); normals,
+        // depths and the fixed-size lamp maps stay nearest-texel.
+        let source = ctx.texture(&settings.source);
+        let (w, h) = (output.width(), output.height());
+        let upsample = (source.width(), source.height()) == ctx.frame.size
+            && ctx.frame.size != (w, h)
+            && matches!(settings.kind, OutputView::Radiance | OutputView::Color);
+        let uniform = PresentUniform {
+            mode: [settings.kind.code(), linear as u32, encode_srgb as u32, upsample as u32],
+            output: [w as f32, h as f32, 1.0 / w as f32, 1.0 / h as f32],
+        };
+        ctx.gpu.queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&uniform));
 
         let device = &ctx.gpu.device;
         let (module, globals) = (&self.module, &self.globals_layout);

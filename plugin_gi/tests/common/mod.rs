@@ -69,6 +69,8 @@ pub fn cornell_view(power: f32) -> ViewState {
         headlamp: Headlamp::new(profile),
         lights: vec![],
         exposure: 1.0,
+        instances: vec![],
+        camera_flash: [0.0; 3],
     }
 }
 
