@@ -27,6 +27,8 @@ pub struct LevelCollision {
     /// Never stepped; it only provides the query dispatcher.
     narrow_phase: NarrowPhase,
     triangle_count: usize,
+    /// Corners of the box around every triangle.
+    bounds: (Vec3, Vec3),
 }
 
 /// The first surface a ray meets.
@@ -81,6 +83,8 @@ impl LevelCollision {
             return Err(CollisionError::NoTriangles);
         }
         let triangle_count = triangles.len();
+        let used = triangles.iter().flatten().map(|&i| positions[i as usize]);
+        let bounds = used.fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)));
 
         // FIX_INTERNAL_EDGES (which merges duplicate vertices first) corrects contact normals on
         // edges shared by coplanar triangles, so a capsule sliding over a floor made of many
@@ -101,6 +105,7 @@ impl LevelCollision {
             broad_phase,
             narrow_phase: NarrowPhase::new(),
             triangle_count,
+            bounds,
         })
     }
 
@@ -116,6 +121,17 @@ impl LevelCollision {
         let (_, hit) = self.query_pipeline().cast_ray_and_get_normal(&ray, max_distance.min(f32::MAX), true)?;
         let normal = if hit.normal.dot(dir) > 0.0 { -hit.normal } else { hit.normal };
         Some(RayHit { distance: hit.time_of_impact, point: origin + dir * hit.time_of_impact, normal })
+    }
+
+    /// The smallest and largest corner of the box around the level's triangles.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        self.bounds
+    }
+
+    /// Whether an upright capsule of `radius` and `height` (feet to top) standing at `feet`
+    /// touches nothing of the level.
+    pub fn capsule_fits(&self, feet: Vec3, radius: f32, height: f32) -> bool {
+        crate::sweep::Mover::new(self, radius, height, 45.0).fits(feet)
     }
 
     /// Number of triangles in the collision mesh (degenerate input triangles excluded).
