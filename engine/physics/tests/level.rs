@@ -177,3 +177,17 @@ fn a_random_walk_around_the_cellar_stays_inside_it() {
         assert!((-8.0..12.4).contains(&p.x) && (-26.8..5.0).contains(&p.z), "tick {tick}: outside the walls: {body:?}");
     }
 }
+
+#[test]
+fn bounds_hold_every_triangle_and_capsules_fit_only_clear_of_them() {
+    let mut g = Geometry::with_floor();
+    g.cuboid(Vec3::new(2.0, 0.0, -1.0), Vec3::new(3.0, 2.0, 1.0));
+    let level = g.build();
+    assert_eq!(level.bounds(), (Vec3::new(-50.0, -0.2, -50.0), Vec3::new(50.0, 2.0, 50.0)));
+    let fits = |x: f32, y: f32| level.capsule_fits(Vec3::new(x, y, 0.0), 0.3, 1.8);
+    assert!(fits(0.0, 0.05), "clear of the floor and the box");
+    assert!(!fits(0.0, -0.05), "sunk into the floor");
+    assert!(!fits(1.8, 0.05), "overlapping the box's side");
+    assert!(fits(1.65, 0.05), "just short of it");
+    assert!(fits(2.5, 2.05), "standing on top of it");
+}
