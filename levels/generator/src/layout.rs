@@ -165,6 +165,14 @@ pub struct Headlamp {
     pub color: [f64; 3],
 }
 
+/// `[game]` in level.toml.
+#[derive(Clone, Debug)]
+pub struct GameRules {
+    /// A full battery lasts this long lit, seconds.
+    pub battery_seconds: f64,
+    pub objective: &'static str,
+}
+
 #[derive(Clone, Debug)]
 pub struct Level {
     pub name: &'static str,
@@ -177,6 +185,7 @@ pub struct Level {
     pub camera: Camera,
     pub spawn: Spawn,
     pub headlamp: Headlamp,
+    pub game: GameRules,
 }
 
 /// What a solid box is part of.
@@ -321,37 +330,36 @@ pub fn cellar() -> Level {
 
     let spawn = Spawn { position: [0.0, 0.0, 3.8], yaw_deg: 0.0, pitch_deg: 0.0 };
 
+    // Gameplay: pickups, crawlers and their patrol routes, the exit (see the game's
+    // `sim::level_entities` for the marker contract).
+    let marker = |name, position, yaw_deg, extras| Marker { name, position, yaw_deg, extras };
+    let waypoint = |name, route: &str, order: u32, position| {
+        marker(name, position, 0.0, json!({ "waypoint": route, "order": order }))
+    };
+    #[rustfmt::skip]
     let markers = vec![
-        Marker {
-            name: "spawn_player",
-            position: spawn.position,
-            yaw_deg: spawn.yaw_deg,
-            extras: json!({ "spawn": "player" }),
-        },
-        Marker {
-            name: "pickup_battery_cornell",
-            position: [-6.8, 0.0, -9.4],
-            yaw_deg: 0.0,
-            extras: json!({ "pickup": "battery" }),
-        },
-        Marker {
-            name: "pickup_battery_storeroom",
-            position: [11.7, 1.0, -21.3],
-            yaw_deg: 0.0,
-            extras: json!({ "pickup": "battery" }),
-        },
-        Marker {
-            name: "enemy_crawler_blue_yellow",
-            position: [4.4, 0.0, -8.0],
-            yaw_deg: 90.0,
-            extras: json!({ "enemy": "crawler" }),
-        },
-        Marker {
-            name: "enemy_crawler_hall",
-            position: [3.0, 0.0, -23.8],
-            yaw_deg: 180.0,
-            extras: json!({ "enemy": "crawler" }),
-        },
+        marker("spawn_player", spawn.position, spawn.yaw_deg, json!({ "spawn": "player" })),
+        marker("pickup_battery_cornell", [-6.8, 0.0, -9.4], 0.0, json!({ "pickup": "battery" })),
+        marker("pickup_battery_storeroom", [11.7, 1.0, -21.3], 0.0, json!({ "pickup": "battery" })),
+        marker("pickup_battery_hall", [6.6, 0.0, -13.6], 0.0, json!({ "pickup": "battery" })),
+        marker("pickup_ammo_blue_yellow", [5.7, 1.6, -4.7], 0.0, json!({ "pickup": "ammo" })),
+        marker("pickup_ammo_hall", [-7.0, 1.6, -13.6], 0.0, json!({ "pickup": "ammo" })),
+        marker("pickup_health_cornell", [-3.4, 1.0, -8.4], 0.0, json!({ "pickup": "health" })),
+        marker("pickup_health_hall", [0.0, 0.4, -26.0], 0.0, json!({ "pickup": "health" })),
+        // Guards the red/green room, facing its door.
+        marker("enemy_crawler_cornell", [-5.0, 0.0, -8.6], -90.0, json!({ "enemy": "crawler" })),
+        marker("enemy_crawler_blue_yellow", [3.9, 0.0, -6.0], 180.0, json!({ "enemy": "crawler", "route": "blue_yellow" })),
+        waypoint("route_blue_yellow_1", "blue_yellow", 1, [3.9, 0.0, -6.0]),
+        waypoint("route_blue_yellow_2", "blue_yellow", 2, [3.9, 0.0, -10.6]),
+        marker("enemy_crawler_hall", [5.8, 0.0, -23.6], 90.0, json!({ "enemy": "crawler", "route": "hall" })),
+        waypoint("route_hall_1", "hall", 1, [5.8, 0.0, -23.6]),
+        waypoint("route_hall_2", "hall", 2, [-5.8, 0.0, -23.6]),
+        waypoint("route_hall_3", "hall", 3, [-5.8, 0.0, -15.0]),
+        waypoint("route_hall_4", "hall", 4, [5.8, 0.0, -15.0]),
+        // Guards the way out, facing the storeroom door.
+        marker("enemy_crawler_storeroom", [11.2, 0.0, -19.6], 90.0, json!({ "enemy": "crawler" })),
+        // The way out; its sign faces the storeroom door (west).
+        marker("exit", [10.6, 0.0, -20.0], 90.0, json!({ "exit": true, "radius": 1.0 })),
     ];
 
     let lights = vec![
@@ -406,6 +414,10 @@ pub fn cellar() -> Level {
             inner_deg: 18.0,
             outer_deg: 34.0,
             color: [1.0, 0.95, 0.85],
+        },
+        game: GameRules {
+            battery_seconds: 120.0,
+            objective: "Put down the four crawlers, or get out through the storeroom",
         },
     }
 }

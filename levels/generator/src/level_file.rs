@@ -1,5 +1,5 @@
 //! Writes `level.toml`, the level's settings for the game: which scene to load, exposure, where
-//! the player spawns and the headlamp. Only the keys the game reads are written.
+//! the player spawns, the headlamp, the gameplay rules. Only the keys the game reads are written.
 
 use crate::layout::Level;
 use std::fmt::Write;
@@ -57,6 +57,11 @@ profile = \"{profile}\"
 inner_deg = {inner}
 outer_deg = {outer}
 color = {color}
+
+# Gameplay rules; the pickups, crawlers, patrol routes and the exit are marker nodes in the scene.
+[game]
+battery_seconds = {battery}
+objective = \"{objective}\"
 ",
         name = level.name,
         exposure = float(level.exposure),
@@ -69,6 +74,8 @@ color = {color}
         inner = float(h.inner_deg),
         outer = float(h.outer_deg),
         color = array(&h.color),
+        battery = float(level.game.battery_seconds),
+        objective = level.game.objective,
     );
     out
 }
@@ -107,6 +114,8 @@ mod tests {
             "headlamp.inner_deg",
             "headlamp.outer_deg",
             "headlamp.color",
+            "game.battery_seconds",
+            "game.objective",
         ];
         assert_eq!(keys, expected);
         assert!(text.contains("name = \"The Cellar\"\nscene = \"scene.gltf\"\n"));

@@ -98,6 +98,10 @@ pub fn ascii_map(level: &Level, solids: &[Solid]) -> String {
             "$"
         } else if m.extras.get("enemy").is_some() {
             "!"
+        } else if m.extras.get("exit").is_some() {
+            "X"
+        } else if m.extras.get("waypoint").is_some() {
+            "+"
         } else {
             "?"
         };
