@@ -12,7 +12,7 @@ use headlamp_tests::{cellar, cellar_path, engine, replay_files};
 
 /// Per-tick state hashes of `commands` from a fresh start (fresh collision geometry too).
 fn hashes(level: &engine::scene::Level, commands: &[TickCommand], seed: u64) -> Vec<u64> {
-    let mut sim = Simulation::new(level, game::sim::level_collision(level).unwrap(), 60, seed);
+    let mut sim = Simulation::new(level, game::sim::level_world(level).unwrap(), 60, seed);
     commands
         .iter()
         .map(|c| {
@@ -96,8 +96,10 @@ fn recording_live_then_verifying_agrees() {
     let gi = plugin_gi::GiSettings::default();
     let out = std::env::temp_dir().join(format!("headlamp-live-{}.replay", std::process::id()));
     let header = recording::header(&level, &level_path, 60, 5, &gi);
-    let sim = Simulation::new(&level, game::sim::level_collision(&level).unwrap(), 60, 5);
-    let mut app = GameWindow::new(level, sim, TickSource::live(Some(Recorder::new(header, out.clone()))), gi);
+    let sim = Simulation::new(&level, game::sim::level_world(&level).unwrap(), 60, 5);
+    let config = game_ui::Config { gi, ..Default::default() };
+    let source = TickSource::live(&config, Some(Recorder::new(header, out.clone())));
+    let mut app = GameWindow::new(level, sim, source, config);
     let mut input = Input::default();
     input.captured = true;
     let mut rng = Rng::new(3);
@@ -137,10 +139,10 @@ fn recording_live_then_verifying_agrees() {
 /// The states of a replay after each tick (index 0 = the start).
 fn states(replay: &LoadedReplay) -> Vec<game::sim::WorldState> {
     let mut sim = replay.simulation().unwrap();
-    let mut out = vec![sim.state];
+    let mut out = vec![sim.state.clone()];
     for c in &replay.commands {
         sim.step(c);
-        out.push(sim.state);
+        out.push(sim.state.clone());
     }
     out
 }
@@ -177,11 +179,22 @@ fn replays_do_what_their_scripts_say() {
     let s = states(&replay_files::open("lamp_toggle"));
     assert!(s[30].lamp.on && !s[31].lamp.on && !s[60].lamp.on && s[61].lamp.on);
 
-    // Detached: left inside the red/green room (x < -1.4) looking west, while the player walks
-    // back out to the corridor.
+    // Detached: set down on the floor inside the red/green room (x < -1.4) looking west, while
+    // the player walks back out to the corridor.
     let s = states(&replay_files::open("lamp_detach"));
     let lamp = s[285].lamp;
     assert!(!lamp.attached && lamp.position.x < -1.8 && (lamp.position.z + 7.0).abs() < 0.1, "{lamp:?}");
+    assert!(lamp.resting && lamp.position.y < 0.1, "it lies on the floor: {lamp:?}");
     assert_eq!(lamp.yaw, 16384, "the lamp looks west, where the view did");
     assert!(s[285].player.body.position.x > -1.0, "the player is back in the corridor");
+
+    // The win: every crawler put down by the gun, the player unhurt enough to live, the lamp
+    // still on.
+    let s = states(&replay_files::open("win"));
+    let end = s.last().unwrap();
+    assert_eq!(end.outcome, game::sim::Outcome::Won);
+    assert_eq!(end.enemies_left(), 0);
+    assert!(end.player.alive() && end.lamp.on && end.lamp.attached);
+    let shots = s.windows(2).filter(|w| w[1].weapon.flash == game::sim::weapon::FLASH_TICKS).count();
+    assert!(shots >= 12, "the crawlers went down to gunfire: {shots} shots");
 }

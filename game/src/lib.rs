@@ -1,15 +1,16 @@
 //! Headlamp, the game: the deterministic simulation, the command line, the play loop, replays,
 //! and how the engine and the GI plugin are wired.
 
+pub mod actors;
 pub mod bench;
 pub mod cli;
 pub mod command_sampler;
+pub mod game_events;
 pub mod play;
 pub mod recording;
 pub mod render_cmd;
 pub mod replay_cmd;
 pub mod script;
-pub mod settings_panel;
 pub mod sim;
 pub mod view;
 

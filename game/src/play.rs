@@ -1,40 +1,67 @@
-//! The game in a window: live play, live play while recording, or watching a replay. All three
-//! run the same fixed-tick simulation; they differ only in where each tick's command comes from.
-//! F1 toggles the GI settings panel; opening it releases the mouse so its sliders can be used
-//! at once, and a click on the 3D view captures the mouse again (the panel stays open).
+//! The game in a window: live play (from the main menu), live play while recording, or
+//! watching a replay. All three run the same fixed-tick simulation; they differ only in where
+//! each tick's command comes from. Menus pause the simulation (no ticks run while one is
+//! open), Esc opens the pause menu, F1 the GI panel, F3 the performance overlay.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
+use engine::camera::CameraProjection;
 use engine::clock::FixedClock;
 use engine::egui;
-use engine::frame::ViewState;
 use engine::gpu::Gpu;
 use engine::input::{Input, KeyCode};
 use engine::renderer::Renderer;
 use engine::scene::Level;
-use engine::start_view::{initial_view, ViewOverrides};
 use engine::window::WindowApp;
-use plugin_gi::{GiHandle, GiSettings};
+use game_ui::{gi_panel, hud, overlay, Config, FrameRate, HudInfo, MenuAction, Menus, OverlayInfo, Screen};
+use plugin_gi::GiHandle;
 
-use crate::command_sampler::{CommandSampler, MOUSE_SENSITIVITY};
+use crate::command_sampler::CommandSampler;
+use crate::game_events::Messages;
 use crate::recording::{Divergence, LoadedReplay, Recorder};
-use crate::settings_panel;
-use crate::sim::{Simulation, WorldState};
+use crate::sim::{lamp, player, weapon, Outcome, Simulation, WorldState};
+use crate::view::WorldView;
 
 /// A recording is also written every this many ticks (10 s), so a crash or a killed process
 /// loses at most the last few seconds.
 pub const AUTOSAVE_TICKS: u32 = 600;
+/// After a win or a death the world stays on screen this long before the menu comes up, s.
+const GAME_OVER_DELAY: f32 = 1.5;
+/// The F3 overlay reads GPU pass times this often (reading waits for the GPU), frames.
+const TIMING_EVERY: u32 = 30;
 
-/// `headlamp play`.
+/// `headlamp play`: the main menu first, the config file loaded (and saved on change).
 pub fn run(level_path: &Path) -> anyhow::Result<()> {
     let level = engine::scene::load_level(level_path)?;
-    let collision = crate::sim::level_collision(&level)?;
-    let sim = Simulation::new(&level, collision, FixedClock::DEFAULT_TICK_RATE, crate::recording::fresh_seed());
-    let mut app = GameWindow::new(level, sim, TickSource::live(None), GiSettings::default());
+    let world = crate::sim::level_world(&level)?;
+    let (config, config_path, warning) = user_config();
+    let sim = Simulation::new(&level, world, FixedClock::DEFAULT_TICK_RATE, crate::recording::fresh_seed());
+    let mut app = GameWindow::new(level, sim, TickSource::live(&config, None), config);
+    app.config_path = config_path;
+    app.menus = Menus::new();
+    if let Some(w) = warning {
+        app.menus.show_warning(w);
+    }
     engine::window::run("Headlamp", &mut app)
 }
 
+/// The player's settings from their config file, where it is, and a warning to show when the
+/// file could not be used (a bad file is kept beside it as `.bad`; the defaults are used).
+pub fn user_config() -> (Config, Option<PathBuf>, Option<String>) {
+    let path = game_ui::config_path();
+    let (config, warning) = match &path {
+        Some(path) => Config::load_or_default(path),
+        None => (Config::default(), Some("no home directory: settings will not be saved".to_owned())),
+    };
+    if let Some(w) = &warning {
+        log::warn!("{w}");
+    }
+    (config, path, warning)
+}
+
 /// Where ticks come from.
+// One per window: the size difference between the variants costs nothing.
+#[allow(clippy::large_enum_variant)]
 pub enum TickSource {
     /// The keyboard and mouse, optionally recorded.
     Live { sampler: CommandSampler, recorder: Option<Recorder> },
@@ -43,8 +70,9 @@ pub enum TickSource {
 }
 
 impl TickSource {
-    pub fn live(recorder: Option<Recorder>) -> Self {
-        TickSource::Live { sampler: CommandSampler::new(MOUSE_SENSITIVITY), recorder }
+    pub fn live(config: &Config, recorder: Option<Recorder>) -> Self {
+        let sampler = CommandSampler::new(config.radians_per_pixel(), config.invert_y, config.bindings.clone());
+        TickSource::Live { sampler, recorder }
     }
 }
 
@@ -54,32 +82,62 @@ pub struct GameWindow {
     /// The state one tick before `sim.state`: frames are drawn between the two.
     prev: WorldState,
     clock: FixedClock,
-    view: ViewState,
+    view: WorldView,
     pub source: TickSource,
     renderer: Option<Renderer>,
-    /// The GI settings as the panel (F1) leaves them, pushed to the plugin on every change.
-    pub gi_settings: GiSettings,
     gi: Option<GiHandle>,
-    panel_open: bool,
-    release_mouse: bool,
+    pub config: Config,
+    /// Where the config is saved when a setting changes (None: not saved, e.g. in tests).
+    pub config_path: Option<PathBuf>,
+    pub menus: Menus,
+    /// The input of this frame's `update`, for the menus (the window clears it before `ui`).
+    input: Input,
+    /// Seconds since the window opened (idle animation only).
+    time: f32,
+    /// Seconds since the level was won or lost.
+    since_outcome: f32,
+    messages: Messages,
+    frame_rate: FrameRate,
+    ticks_this_frame: u32,
+    overlay_open: bool,
+    pass_times: Vec<(String, f64)>,
+    frames: u32,
+    gi_panel_open: bool,
+    quit: bool,
 }
 
 impl GameWindow {
-    pub fn new(level: Level, sim: Simulation, source: TickSource, gi_settings: GiSettings) -> Self {
-        let mut view = initial_view(&level, &ViewOverrides::default());
-        crate::view::at(&mut view, &sim.state);
+    /// A window on `sim`. Recording and watching a replay start at once; plain play starts on
+    /// the screen `menus` shows (`run` sets the main menu).
+    pub fn new(level: Level, sim: Simulation, source: TickSource, config: Config) -> Self {
+        let mut view = WorldView::new(&level);
+        view.view.camera.projection = CameraProjection::Perspective { fov_y: config.fov_deg.to_radians() };
+        view.at(sim.entities(), &sim.state);
+        let mut menus = Menus::new();
+        menus.playing();
         Self {
-            prev: sim.state,
+            prev: sim.state.clone(),
             clock: FixedClock::new(sim.tick_rate()),
             level,
             sim,
             view,
             source,
             renderer: None,
-            gi_settings,
             gi: None,
-            panel_open: false,
-            release_mouse: false,
+            config,
+            config_path: None,
+            menus,
+            input: Input::default(),
+            time: 0.0,
+            since_outcome: 0.0,
+            messages: Messages::default(),
+            frame_rate: FrameRate::new(),
+            ticks_this_frame: 0,
+            overlay_open: false,
+            pass_times: Vec::new(),
+            frames: 0,
+            gi_panel_open: false,
+            quit: false,
         }
     }
 
@@ -88,8 +146,9 @@ impl GameWindow {
         if let TickSource::Live { sampler, .. } = &mut self.source {
             sampler.gather(input);
         }
+        self.ticks_this_frame = 0;
         for _ in 0..self.clock.advance(dt) {
-            let before = self.sim.state;
+            let before = self.sim.state.clone();
             match &mut self.source {
                 TickSource::Live { sampler, recorder } => {
                     let cmd = sampler.next_command(input);
@@ -106,7 +165,7 @@ impl GameWindow {
                 TickSource::Replay { replay, next, diverged } => {
                     if *next >= replay.commands.len() {
                         // Finished: hold the last state instead of drawing between two.
-                        self.prev = self.sim.state;
+                        self.prev = self.sim.state.clone();
                         break;
                     }
                     if let Err(d) = replay.step_checked(&mut self.sim, *next) {
@@ -116,7 +175,71 @@ impl GameWindow {
                     *next += 1;
                 }
             }
+            self.messages.push_events(&self.sim.events, &self.sim.state);
+            self.ticks_this_frame += 1;
             self.prev = before;
+        }
+    }
+
+    /// The level again from the start, with a fresh seed. A recording so far is saved and the
+    /// new attempt goes to a new file beside it, so no attempt is lost.
+    fn restart(&mut self) {
+        let seed = crate::recording::fresh_seed();
+        self.sim = Simulation::new(&self.level, self.sim.world(), self.sim.tick_rate(), seed);
+        self.prev = self.sim.state.clone();
+        self.clock = FixedClock::new(self.sim.tick_rate());
+        self.since_outcome = 0.0;
+        self.messages = Messages::default();
+        if let TickSource::Live { sampler, recorder: Some(r) } = &mut self.source {
+            sampler.clear();
+            if let Err(e) = r.save() {
+                log::error!("{e:#}");
+            }
+            let mut header = r.writer().header().clone();
+            header.seed = seed;
+            let path = crate::recording::next_attempt_path(&r.path);
+            log::info!("recording the new attempt to {}", path.display());
+            *r = Recorder::new(header, path);
+        }
+    }
+
+    fn apply_config(&mut self) {
+        if let TickSource::Live { sampler, .. } = &mut self.source {
+            sampler.sensitivity = self.config.radians_per_pixel();
+            sampler.invert_y = self.config.invert_y;
+            sampler.bindings = self.config.bindings.clone();
+        }
+        self.view.view.camera.projection = CameraProjection::Perspective { fov_y: self.config.fov_deg.to_radians() };
+        if let Some(r) = &mut self.renderer {
+            r.set_render_scale(self.config.render_scale);
+            r.set_timing(self.overlay_open);
+        }
+        if let Some(gi) = &self.gi {
+            gi.set_settings(self.config.gi.clone());
+        }
+    }
+
+    fn save_config(&self) {
+        if let Some(path) = &self.config_path {
+            if let Err(e) = self.config.save(path) {
+                log::error!("{e}");
+            }
+        }
+    }
+
+    fn menu_action(&mut self, action: MenuAction) {
+        match action {
+            MenuAction::Play | MenuAction::Resume => self.menus.playing(),
+            MenuAction::Restart => {
+                self.restart();
+                self.menus.playing();
+            }
+            MenuAction::MainMenu => self.restart(),
+            MenuAction::Quit => self.quit = true,
+            MenuAction::ConfigChanged => {
+                self.apply_config();
+                self.save_config();
+            }
         }
     }
 
@@ -124,62 +247,174 @@ impl GameWindow {
         let tick = self.sim.state.tick;
         match &self.source {
             TickSource::Live { recorder: Some(r), .. } => {
-                format!("REC {} — tick {tick} (close the window to save)", r.path.display())
+                format!("REC {} — tick {tick} (quit from the menu to save)", r.path.display())
             }
             TickSource::Live { recorder: None, .. } => String::new(),
             TickSource::Replay { replay, diverged: Some(d), .. } => format!("{}: {d}", replay.path.display()),
             TickSource::Replay { replay, next, .. } => {
-                let end = if *next >= replay.commands.len() { " — finished" } else { "" };
+                let end = if *next >= replay.commands.len() {
+                    format!(" — finished, {}", self.sim.state.outcome.name())
+                } else {
+                    String::new()
+                };
                 format!("REPLAY {} — tick {tick} of {}{end}", replay.path.display(), replay.commands.len())
             }
         }
+    }
+
+    fn hud(&self) -> HudInfo {
+        let s = &self.sim.state;
+        let hint = self.lamp_hint();
+        HudInfo {
+            health: s.player.health,
+            max_health: player::MAX_HEALTH,
+            ammo_in_magazine: s.weapon.magazine as u32,
+            magazine_size: weapon::MAGAZINE as u32,
+            ammo_reserve: s.weapon.reserve as u32,
+            reloading: s.weapon.reloading > 0,
+            battery: s.lamp.battery,
+            lamp_on: s.lamp.on,
+            lamp_attached: s.lamp.attached,
+            enemies_left: s.enemies_left() as u32,
+            enemies_total: s.enemies.len() as u32,
+            objective: self.sim.entities().rules.objective.clone(),
+            hurt: s.player.hurt_ticks as f32 / player::HURT_TICKS as f32,
+            hint,
+            message: self.messages.current().map(str::to_owned),
+        }
+    }
+
+    /// What the lamp keys do right now.
+    fn lamp_hint(&self) -> Option<String> {
+        let s = &self.sim.state;
+        let key = |a: game_ui::Action| {
+            self.config.bindings.get(a)[0].map(|b| b.label().into_owned()).unwrap_or_else(|| "(unbound)".into())
+        };
+        if !s.lamp.attached {
+            return Some(if s.lamp.within_reach(&s.player) {
+                format!("{} — pick up the lamp", key(game_ui::Action::LampDetach))
+            } else {
+                format!("Your lamp lies {:.0} m away", s.lamp.position.distance(s.player.eye()))
+            });
+        }
+        if s.lamp.battery == 0.0 {
+            return Some("The battery is flat — find a battery".into());
+        }
+        if s.lamp.battery < lamp::LOW_BATTERY {
+            return Some("Battery low".into());
+        }
+        None
+    }
+
+    fn overlay(&self) -> OverlayInfo {
+        let stats = self.gi.as_ref().map(|g| g.stats()).unwrap_or_default();
+        OverlayInfo {
+            fps: self.frame_rate.fps(),
+            frame_ms: self.frame_rate.frame_ms(),
+            pass_times_ms: self.pass_times.clone(),
+            reflection_lights: stats.slots,
+            light_capacity: stats.light_capacity,
+            ticks: self.ticks_this_frame,
+        }
+    }
+
+    fn corner_label(ctx: &egui::Context, id: &str, offset: egui::Vec2, text: String) {
+        egui::Area::new(egui::Id::unique(id)).anchor(egui::Align2::RIGHT_TOP, offset).interactable(false).show(
+            ctx,
+            |ui| {
+                egui::Frame::NONE
+                    .fill(egui::Color32::from_black_alpha(150))
+                    .inner_margin(egui::Margin::symmetric(6, 3))
+                    .show(ui, |ui| ui.label(egui::RichText::new(text).color(egui::Color32::from_gray(230))));
+            },
+        );
     }
 }
 
 impl WindowApp for GameWindow {
     fn init(&mut self, gpu: &Gpu, _format: engine::wgpu::TextureFormat) -> anyhow::Result<()> {
-        let (plugins, gi) = crate::plugins(self.gi_settings.clone());
-        self.renderer = Some(Renderer::new(gpu, &self.level.scene, plugins)?);
+        let (plugins, gi) = crate::plugins(self.config.gi.clone());
+        let mut renderer = Renderer::new(gpu, &self.level.scene, plugins)?;
+        self.view.add_meshes(&mut renderer, gpu);
+        self.renderer = Some(renderer);
         self.gi = Some(gi);
+        self.apply_config();
         Ok(())
     }
 
     fn update(&mut self, input: &Input, dt: f32) {
+        self.input = input.clone();
+        self.frame_rate.push(dt);
+        self.time += dt;
+        if input.pressed(KeyCode::F3) {
+            self.overlay_open = !self.overlay_open;
+            if let Some(r) = &mut self.renderer {
+                r.set_timing(self.overlay_open);
+            }
+        }
+        if input.pressed(KeyCode::F1) {
+            self.gi_panel_open = !self.gi_panel_open;
+        }
+        if self.menus.is_open() {
+            self.ticks_this_frame = 0;
+            return; // paused: no time passes in the world
+        }
+        if input.pressed(KeyCode::Escape) {
+            self.menus.pause();
+            if let TickSource::Live { sampler, .. } = &mut self.source {
+                sampler.clear();
+            }
+            return;
+        }
         self.run_ticks(input, dt);
+        self.messages.tick(dt);
         let pending = match &self.source {
             TickSource::Live { sampler, .. } => sampler.pending_look(),
             TickSource::Replay { .. } => (0.0, 0.0),
         };
-        crate::view::apply(&mut self.view, &self.prev, &self.sim.state, self.clock.alpha(), pending);
-        if input.pressed(KeyCode::F1) {
-            self.panel_open = !self.panel_open;
-            self.release_mouse = self.panel_open;
+        let (prev, cur, t) = (&self.prev, &self.sim.state, self.clock.alpha());
+        self.view.update(self.sim.entities(), prev, cur, t, pending, self.time);
+        if self.sim.state.outcome != Outcome::Playing && matches!(self.source, TickSource::Live { .. }) {
+            self.since_outcome += dt;
+            if self.since_outcome >= GAME_OVER_DELAY {
+                self.menus.game_over(self.sim.state.outcome == Outcome::Won);
+            }
         }
     }
 
-    fn release_mouse_requested(&mut self) -> bool {
-        std::mem::take(&mut self.release_mouse)
+    fn capture_wanted(&self) -> Option<bool> {
+        Some(!self.menus.is_open() && !self.gi_panel_open)
+    }
+
+    fn vsync(&self) -> bool {
+        self.config.vsync
+    }
+
+    fn wants_exit(&self) -> bool {
+        self.quit
     }
 
     fn ui(&mut self, ctx: &egui::Context) {
-        settings_panel::hint(ctx);
+        if self.menus.screen() != Screen::MainMenu {
+            hud::show(ctx, &self.hud());
+        }
         let status = self.status();
         if !status.is_empty() {
-            egui::Area::new(egui::Id::unique("headlamp status"))
-                .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-8.0, 8.0))
-                .interactable(false)
-                .show(ctx, |ui| {
-                    egui::Frame::NONE
-                        .fill(egui::Color32::from_black_alpha(150))
-                        .inner_margin(egui::Margin::symmetric(6, 3))
-                        .show(ui, |ui| ui.label(egui::RichText::new(status).color(egui::Color32::from_gray(230))));
-                });
+            Self::corner_label(ctx, "headlamp status", egui::vec2(-8.0, 8.0), status);
         }
-        if settings_panel::window(ctx, &mut self.panel_open, &mut self.gi_settings) {
+        if self.overlay_open {
+            overlay::show(ctx, &self.overlay());
+        } else if self.config.show_fps {
+            Self::corner_label(ctx, "fps", egui::vec2(-8.0, 40.0), format!("{:.0} fps", self.frame_rate.fps()));
+        }
+        if gi_panel::window(ctx, &mut self.gi_panel_open, &mut self.config.gi) {
             // The GI reads its settings every frame: the change shows on the next one.
-            if let Some(gi) = &self.gi {
-                gi.set_settings(self.gi_settings.clone());
-            }
+            self.apply_config();
+            self.save_config();
+        }
+        let input = std::mem::take(&mut self.input);
+        if let Some(action) = self.menus.show(ctx, &mut self.config, &input) {
+            self.menu_action(action);
         }
     }
 
@@ -190,94 +425,16 @@ impl WindowApp for GameWindow {
         view: &engine::wgpu::TextureView,
     ) -> anyhow::Result<()> {
         let renderer = self.renderer.as_mut().expect("init runs before render");
-        renderer.render(gpu, &self.view, target, view)?;
+        renderer.render(gpu, &self.view.view, target, view)?;
+        self.frames += 1;
+        if self.overlay_open && self.frames.is_multiple_of(TIMING_EVERY) {
+            if let Some(times) = renderer.last_pass_times(gpu) {
+                self.pass_times = times;
+            }
+        }
         Ok(())
     }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::settings_panel::egui_harness::{click, input, texts};
-
-    fn app() -> GameWindow {
-        let level = engine::scene::load_level(&crate::default_level()).unwrap();
-        let sim = Simulation::new(&level, crate::sim::level_collision(&level).unwrap(), 60, 1);
-        GameWindow::new(level, sim, TickSource::live(None), GiSettings::default())
-    }
-
-    /// A change made in the panel reaches the GI plugin that renders the next frame.
-    #[test]
-    fn the_settings_panel_drives_the_gi_plugin() {
-        let plugin = plugin_gi::GiPlugin::new(GiSettings::default());
-        let gi = plugin.handle();
-        let mut app = app();
-        app.gi = Some(gi.clone());
-        app.panel_open = true;
-        let ctx = egui::Context::default();
-        let mut output = None;
-        for _ in 0..3 {
-            output = Some(ctx.run_ui(input(Vec::new()), |ui| app.ui(ui.ctx())));
-        }
-        let (_, rect) = texts(&output.unwrap()).into_iter().find(|(t, _)| t == "enabled").expect("the panel is shown");
-        assert!(gi.settings().enabled);
-        for events in click(rect.center()) {
-            let _ = ctx.run_ui(input(events), |ui| app.ui(ui.ctx()));
-        }
-        assert!(!app.gi_settings.enabled, "the click unticks 'enabled'");
-        assert!(!gi.settings().enabled, "the plugin sees the change");
-    }
-
-    /// Frames of any length run the ticks their time pays for, and the view sits between the
-    /// two latest states.
-    #[test]
-    fn frames_run_fixed_ticks_and_draw_between_them() {
-        let mut app = app();
-        let input = Input::default();
-        app.update(&input, 1.0 / 144.0);
-        assert_eq!(app.sim.state.tick, 0, "less than a tick of time runs no tick");
-        for _ in 0..143 {
-            app.update(&input, 1.0 / 144.0);
-        }
-        assert!((59..=60).contains(&app.sim.state.tick), "a second runs 60 ticks, not {}", app.sim.state.tick);
-        let (a, b) = (app.prev.player.eye(), app.sim.state.player.eye());
-        let eye = app.view.camera.position;
-        assert!(eye.distance(a) <= a.distance(b) + 1e-5 && eye.distance(b) <= a.distance(b) + 1e-5);
-    }
-
-    /// Watching a replay in the window runs exactly its ticks, ends on its last state, and
-    /// notices (and shows) a command that no longer gives the recorded state.
-    #[test]
-    fn watching_a_replay_runs_its_ticks_and_notices_divergence() {
-        let level_path = crate::default_level();
-        let level = engine::scene::load_level(&level_path).unwrap();
-        let commands = crate::script::parse("30 forward\n10 turn 20\n", Path::new("t.txt")).unwrap();
-        let path = std::env::temp_dir().join(format!("headlamp-watch-{}.replay", std::process::id()));
-        let gi = GiSettings::default();
-        let rec = crate::replay_cmd::record_commands(&level, &level_path, &commands, 1, &gi, path.clone()).unwrap();
-        rec.save().unwrap();
-        let watch = |tamper: bool| {
-            let mut loaded = LoadedReplay::open(&path, Some(&level_path)).unwrap();
-            if tamper {
-                loaded.commands[5].forward = -127;
-            }
-            let sim = loaded.simulation().unwrap();
-            let source = TickSource::Replay { replay: Box::new(loaded), next: 0, diverged: None };
-            let mut app = GameWindow::new(level.clone(), sim, source, gi.clone());
-            for _ in 0..60 {
-                app.update(&Input::default(), 0.05);
-            }
-            app
-        };
-        let app = watch(false);
-        assert_eq!(app.sim.state.tick, 40);
-        assert_eq!(app.sim.state.hash(), rec.last_hash());
-        assert_eq!(app.prev, app.sim.state, "a finished replay holds its last state");
-        assert!(matches!(app.source, TickSource::Replay { diverged: None, .. }));
-        assert!(app.status().ends_with("finished"), "{}", app.status());
-        let app = watch(true);
-        assert!(matches!(app.source, TickSource::Replay { diverged: Some(Divergence { tick: 6, .. }), .. }));
-        assert!(app.status().contains("diverged at tick 6"), "{}", app.status());
-        let _ = std::fs::remove_file(&path);
-    }
-}
+mod tests;

@@ -35,6 +35,24 @@ pub fn header(level: &Level, level_path: &Path, tick_rate: u32, seed: u64, gi: &
     }
 }
 
+/// Where the next attempt of a recording goes after a restart: `game.replay` → `game-2.replay`,
+/// `game-2.replay` → `game-3.replay`, skipping files that exist.
+pub fn next_attempt_path(path: &Path) -> PathBuf {
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let ext = path.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_else(|| "replay".into());
+    let (base, mut n) = match stem.rsplit_once('-').and_then(|(b, n)| Some((b.to_owned(), n.parse::<u32>().ok()?))) {
+        Some((base, n)) => (base, n + 1),
+        None => (stem, 2),
+    };
+    loop {
+        let candidate = path.with_file_name(format!("{base}-{n}.{ext}"));
+        if !candidate.exists() {
+            return candidate;
+        }
+        n += 1;
+    }
+}
+
 /// Records a live game tick by tick.
 pub struct Recorder {
     writer: ReplayWriter,
@@ -125,8 +143,8 @@ impl LoadedReplay {
 
     /// A fresh simulation at the replay's start.
     pub fn simulation(&self) -> anyhow::Result<Simulation> {
-        let collision = crate::sim::level_collision(&self.level)?;
-        Ok(Simulation::new(&self.level, collision, self.replay.header.tick_rate, self.replay.header.seed))
+        let world = crate::sim::level_world(&self.level)?;
+        Ok(Simulation::new(&self.level, world, self.replay.header.tick_rate, self.replay.header.seed))
     }
 
     /// Runs tick `i` (0-based) and checks the state hash recorded after it.

@@ -7,12 +7,12 @@ use engine::clock::FixedClock;
 use engine::gpu::Gpu;
 use engine::headless::{HeadlessTarget, ImageKind};
 use engine::renderer::Renderer;
-use engine::start_view::{initial_view, ViewOverrides};
 
 use crate::cli::{RecordArgs, ReplayArgs, ScriptArgs};
 use crate::play::{GameWindow, TickSource};
 use crate::recording::{self, LoadedReplay, Recorder};
 use crate::sim::{Simulation, TickCommand, WorldState};
+use crate::view::WorldView;
 
 /// Plays in a window while recording; the replay is written when the window closes, and also
 /// when the game stops on an error, so what was played is never lost.
@@ -20,15 +20,18 @@ pub fn record(args: &RecordArgs) -> anyhow::Result<()> {
     let gi = crate::cli::gi_settings(&args.settings, args.gi).map_err(|e| anyhow!("--set {e}"))?;
     let level_path = args.level.clone().unwrap_or_else(crate::default_level);
     let level = engine::scene::load_level(&level_path)?;
-    let collision = crate::sim::level_collision(&level)?;
+    let world = crate::sim::level_world(&level)?;
     let seed = args.seed.unwrap_or_else(recording::fresh_seed);
     let tick_rate = FixedClock::DEFAULT_TICK_RATE;
     let header = recording::header(&level, &level_path, tick_rate, seed, &gi);
     let recorder = Recorder::new(header, args.out.clone());
     // Writing the empty replay first finds an unwritable --out before anything is played.
     recorder.save()?;
-    let sim = Simulation::new(&level, collision, tick_rate, seed);
-    let mut app = GameWindow::new(level, sim, TickSource::live(Some(recorder)), gi);
+    let sim = Simulation::new(&level, world, tick_rate, seed);
+    // The player's controls, but the GI the recording names; the config file is left as it
+    // is (settings changed while recording last for this session only).
+    let config = game_ui::Config { gi, ..crate::play::user_config().0 };
+    let mut app = GameWindow::new(level, sim, TickSource::live(&config, Some(recorder)), config);
     let played = engine::window::run("Headlamp — recording", &mut app);
     if let TickSource::Live { recorder: Some(r), .. } = &app.source {
         r.save()?;
@@ -41,18 +44,19 @@ pub fn replay(args: &ReplayArgs) -> anyhow::Result<()> {
     let loaded = LoadedReplay::open(&args.file, args.level.as_deref())?;
     if args.verify {
         let end = loaded.verify()?;
-        println!("ok ticks={}", end.tick);
+        println!("ok ticks={} outcome={}", end.tick, end.outcome.name());
         return Ok(());
     }
     if args.headless {
         let end = headless(&loaded, &args.snapshots, args.out_dir.as_deref(), args.size)?;
-        println!("ticks={} hash={:016x}", end.tick, end.hash());
+        println!("ticks={} hash={:016x} outcome={}", end.tick, end.hash(), end.outcome.name());
         return Ok(());
     }
     let sim = loaded.simulation()?;
     let (level, gi) = (loaded.level.clone(), loaded.gi.clone());
     let source = TickSource::Replay { replay: Box::new(loaded), next: 0, diverged: None };
-    let mut app = GameWindow::new(level, sim, source, gi);
+    let config = game_ui::Config { gi, ..crate::play::user_config().0 };
+    let mut app = GameWindow::new(level, sim, source, config);
     engine::window::run("Headlamp — replay", &mut app)
 }
 
@@ -81,7 +85,7 @@ pub fn headless(
     for i in 0..=loaded.commands.len() {
         while wanted.next_if_eq(&&(i as u32)).is_some() {
             if let Some(s) = &mut shooter {
-                s.shoot(&sim.state)?;
+                s.shoot(&sim)?;
             }
         }
         if i < loaded.commands.len() {
@@ -96,7 +100,7 @@ struct SnapshotRenderer {
     gpu: Gpu,
     renderer: Renderer,
     target: HeadlessTarget,
-    view: engine::frame::ViewState,
+    view: WorldView,
     dir: PathBuf,
 }
 
@@ -105,16 +109,17 @@ impl SnapshotRenderer {
         std::fs::create_dir_all(dir).with_context(|| format!("--out-dir {}", dir.display()))?;
         let gpu = Gpu::headless()?;
         let (plugins, _) = crate::plugins(loaded.gi.clone());
-        let renderer = Renderer::new(&gpu, &loaded.level.scene, plugins)?;
+        let mut renderer = Renderer::new(&gpu, &loaded.level.scene, plugins)?;
         let target = HeadlessTarget::new(&gpu, size.0, size.1, ImageKind::Display);
-        let view = initial_view(&loaded.level, &ViewOverrides::default());
+        let mut view = WorldView::new(&loaded.level);
+        view.add_meshes(&mut renderer, &gpu);
         Ok(Self { gpu, renderer, target, view, dir: dir.to_owned() })
     }
 
-    fn shoot(&mut self, state: &WorldState) -> anyhow::Result<()> {
-        crate::view::at(&mut self.view, state);
-        let image = self.target.render(&self.gpu, &mut self.renderer, &self.view)?;
-        let path = self.dir.join(snapshot_name(state.tick));
+    fn shoot(&mut self, sim: &Simulation) -> anyhow::Result<()> {
+        self.view.at(sim.entities(), &sim.state);
+        let image = self.target.render(&self.gpu, &mut self.renderer, &self.view.view)?;
+        let path = self.dir.join(snapshot_name(sim.state.tick));
         engine::output::save(&image, &path)?;
         Ok(())
     }
@@ -152,7 +157,7 @@ pub fn record_commands(
 ) -> anyhow::Result<Recorder> {
     let tick_rate = FixedClock::DEFAULT_TICK_RATE;
     let header = recording::header(level, level_path, tick_rate, seed, gi);
-    let mut sim = Simulation::new(level, crate::sim::level_collision(level)?, tick_rate, seed);
+    let mut sim = Simulation::new(level, crate::sim::level_world(level)?, tick_rate, seed);
     let mut recorder = Recorder::new(header, out);
     for cmd in commands {
         sim.step(cmd);

@@ -14,8 +14,11 @@
 //! | `jump`          | hold jump (jumps on landing while held)                           |
 //! | `turn DEG`      | turn DEG degrees in all over the step, positive to the left       |
 //! | `look DEG`      | pitch DEG degrees in all over the step, positive up               |
+//! | `fire`          | hold the trigger (fires as fast as the gun allows)                |
+//! | `reload`        | reload (on the step's first tick)                                 |
 //! | `lamp toggle`   | switch the headlamp on/off (on the step's first tick)             |
-//! | `lamp detach`   | put the lamp down / pick it up (on the step's first tick)         |
+//! | `lamp detach`   | set the lamp down / pick it up (on the step's first tick)         |
+//! | `lamp throw`    | throw the lamp where you look (on the step's first tick)          |
 
 use std::path::Path;
 
@@ -74,8 +77,8 @@ struct Step {
     look_deg: f32,
 }
 
-const ACTIONS: &str =
-    "wait, forward, back, left, right, sprint, crouch, jump, turn DEG, look DEG, lamp toggle, lamp detach";
+const ACTIONS: &str = "wait, forward, back, left, right, sprint, crouch, jump, fire, reload, turn DEG, look DEG, \
+                       lamp toggle, lamp detach, lamp throw";
 
 impl Step {
     fn parse<'a>(mut words: impl Iterator<Item = &'a str>) -> Result<Self, String> {
@@ -92,6 +95,8 @@ impl Step {
                 "sprint" => s.held |= buttons::SPRINT,
                 "crouch" => s.held |= buttons::CROUCH,
                 "jump" => s.held |= buttons::JUMP,
+                "fire" => s.held |= buttons::FIRE,
+                "reload" => s.presses |= buttons::RELOAD,
                 "turn" | "look" => {
                     let v = words.next().ok_or_else(|| format!("'{w}' needs a number of degrees"))?;
                     let deg: f32 = v
@@ -108,8 +113,12 @@ impl Step {
                 "lamp" => match words.next() {
                     Some("toggle") => s.presses |= buttons::LAMP_TOGGLE,
                     Some("detach") => s.presses |= buttons::LAMP_DETACH,
+                    Some("throw") => s.presses |= buttons::LAMP_THROW,
                     other => {
-                        return Err(format!("'lamp {}': expected lamp toggle or lamp detach", other.unwrap_or("")))
+                        return Err(format!(
+                            "'lamp {}': expected lamp toggle, lamp detach or lamp throw",
+                            other.unwrap_or("")
+                        ))
                     }
                 },
                 _ => return Err(format!("unknown action '{w}' (known: {ACTIONS})")),
@@ -166,6 +175,13 @@ mod tests {
     }
 
     #[test]
+    fn the_gun_and_the_lamp_throw_have_actions() {
+        let c = p("3 fire reload lamp throw").unwrap();
+        assert_eq!(c[0].buttons, buttons::FIRE | buttons::RELOAD | buttons::LAMP_THROW);
+        assert!(c[1..].iter().all(|c| c.buttons == buttons::FIRE), "fire is held, the others pressed");
+    }
+
+    #[test]
     fn negative_turns_add_up_too() {
         let c = p("7 turn -100 look -10").unwrap();
         let sum: i32 = c.iter().map(|c| c.turn as i32).sum();
@@ -181,7 +197,7 @@ mod tests {
             ("10", "needs an action"),
             ("10 turn", "'turn' needs a number"),
             ("10 turn left", "'left' is not a number"),
-            ("10 lamp off", "expected lamp toggle or lamp detach"),
+            ("10 lamp off", "expected lamp toggle, lamp detach or lamp throw"),
             ("1 turn 100000", "per tick"),
             ("99999999999 wait", "runs past"),
         ] {

@@ -39,10 +39,21 @@ fn script_then_verify_then_headless() {
     let dir = scratch("ok");
     let (replay, hash) = script(&dir, WALK, &cellar());
     let r = replay.to_str().unwrap();
-    assert_eq!(stdout(&headlamp(&["replay", r, "--verify"])).trim(), "ok ticks=131");
+    assert_eq!(stdout(&headlamp(&["replay", r, "--verify"])).trim(), "ok ticks=131 outcome=playing");
     // The level is found by its id, as a user in the project folder would run it.
     let out = stdout(&headlamp(&["replay", r, "--headless"]));
-    assert_eq!(out.trim(), format!("ticks=131 hash={hash}"));
+    assert_eq!(out.trim(), format!("ticks=131 hash={hash} outcome=playing"));
+}
+
+/// The shipped win replay plays the demo level from the start to a win, as a user (and CI)
+/// checks it.
+#[test]
+fn the_win_replay_wins() {
+    let win = format!("{}/../tests/replays/win.replay", env!("CARGO_MANIFEST_DIR"));
+    let out = stdout(&headlamp(&["replay", &win, "--headless"]));
+    assert!(out.trim().ends_with("outcome=won"), "{out}");
+    let out = stdout(&headlamp(&["replay", &win, "--verify"]));
+    assert!(out.trim().ends_with("outcome=won"), "{out}");
 }
 
 #[test]
@@ -127,7 +138,7 @@ fn a_changed_level_is_refused() {
     let (replay, _) = script(&dir, WALK, level.to_str().unwrap());
     let r = replay.to_str().unwrap();
     let l = level.to_str().unwrap();
-    assert_eq!(stdout(&headlamp(&["replay", r, "--verify", "--level", l])).trim(), "ok ticks=131");
+    assert_eq!(stdout(&headlamp(&["replay", r, "--verify", "--level", l])).trim(), "ok ticks=131 outcome=playing");
     // Not shipped and not under ./levels: the replay cannot guess where it is.
     refused(&headlamp(&["replay", r, "--verify"]), "'mycellar'");
     let toml = std::fs::read_to_string(level.join("level.toml")).unwrap();

@@ -5,17 +5,23 @@
 /// exactly, so a replay turns the player to the same bit-exact heading.
 pub const ANGLE_UNITS_PER_TURN: f32 = 65536.0;
 
-/// Buttons, as bits of [`TickCommand::buttons`]. Held buttons (jump, crouch, sprint) are set on
-/// every tick they are down; the lamp buttons are presses, set on one tick only.
+/// Buttons, as bits of [`TickCommand::buttons`]. Held buttons (jump, crouch, sprint, fire) are
+/// set on every tick they are down; the others are presses, set on one tick only.
 pub mod buttons {
     pub const JUMP: u8 = 1 << 0;
     pub const CROUCH: u8 = 1 << 1;
     pub const SPRINT: u8 = 1 << 2;
     /// Switch the headlamp on or off.
     pub const LAMP_TOGGLE: u8 = 1 << 3;
-    /// Put the lamp down where you stand, or pick it back up.
+    /// Set the lamp down in front of you, or pick it back up when it is within reach.
     pub const LAMP_DETACH: u8 = 1 << 4;
-    pub const ALL: u8 = JUMP | CROUCH | SPRINT | LAMP_TOGGLE | LAMP_DETACH;
+    /// Fire the weapon (held: it fires again as soon as it can).
+    pub const FIRE: u8 = 1 << 5;
+    /// Reload the weapon.
+    pub const RELOAD: u8 = 1 << 6;
+    /// Throw the lamp where you look.
+    pub const LAMP_THROW: u8 = 1 << 7;
+    pub const ALL: u8 = JUMP | CROUCH | SPRINT | LAMP_TOGGLE | LAMP_DETACH | FIRE | RELOAD | LAMP_THROW;
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -45,14 +51,11 @@ impl TickCommand {
         [self.forward as u8, self.strafe as u8, t0, t1, l0, l1, self.buttons]
     }
 
-    /// Reads a command back; unknown button bits mean the bytes are not a command this build
-    /// understands, and are refused rather than half-simulated.
+    /// Reads a command back. Every button bit has a meaning now, so a wider command (a new
+    /// `command_size` in the replay header) is how more buttons would arrive.
     pub fn decode(bytes: &[u8]) -> Result<Self, String> {
         let b: &[u8; Self::SIZE] =
             bytes.try_into().map_err(|_| format!("a command is {} bytes, not {}", Self::SIZE, bytes.len()))?;
-        if b[6] & !buttons::ALL != 0 {
-            return Err(format!("unknown button bits {:#04x}", b[6] & !buttons::ALL));
-        }
         Ok(Self {
             forward: b[0] as i8,
             strafe: b[1] as i8,
@@ -82,6 +85,5 @@ mod tests {
         let c = TickCommand { forward: -127, strafe: 64, turn: -12345, look: 300, buttons: buttons::ALL };
         assert_eq!(TickCommand::decode(&c.encode()), Ok(c));
         assert!(TickCommand::decode(&[0; 6]).is_err());
-        assert!(TickCommand::decode(&[0, 0, 0, 0, 0, 0, 0x80]).unwrap_err().contains("unknown button"));
     }
 }

@@ -17,6 +17,17 @@ pub const EYE_BELOW_TOP: f32 = 0.2;
 pub const EYE_SPEED: f32 = 4.0;
 /// Pitch stops just short of straight up/down (89°), where yaw would lose its meaning.
 pub const MAX_PITCH: i32 = 16_201;
+pub const MAX_HEALTH: f32 = 100.0;
+/// Ticks the HUD shows a hit for.
+pub const HURT_TICKS: u8 = 30;
+
+/// The unit direction of a heading and pitch in angle units.
+pub fn aim(yaw: u16, pitch: i16) -> Vec3 {
+    // libm, not std: the same bits on every platform and libc.
+    let (yaw, pitch) = (radians(yaw as f32), radians(pitch as f32));
+    let (sy, cy, sp, cp) = (libm::sinf(yaw), libm::cosf(yaw), libm::sinf(pitch), libm::cosf(pitch));
+    Vec3::new(-sy * cp, sp, -cy * cp)
+}
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Player {
@@ -27,16 +38,33 @@ pub struct Player {
     pub pitch: i16,
     /// Eye height above the feet, m.
     pub eye_height: f32,
+    pub health: f32,
+    /// Ticks since the last hit still shown (counts down to 0).
+    pub hurt_ticks: u8,
 }
 
 impl Player {
     pub fn spawn(feet: Vec3, yaw: u16, pitch: i16, config: &CharacterConfig) -> Self {
         let body = CharacterBody::standing_at(feet);
-        Self { body, yaw, pitch, eye_height: body.height(config) - EYE_BELOW_TOP }
+        Self { body, yaw, pitch, eye_height: body.height(config) - EYE_BELOW_TOP, health: MAX_HEALTH, hurt_ticks: 0 }
     }
 
     pub fn eye(&self) -> Vec3 {
         self.body.position + Vec3::Y * self.eye_height
+    }
+
+    pub fn alive(&self) -> bool {
+        self.health > 0.0
+    }
+
+    /// The unit direction the view looks along.
+    pub fn aim(&self) -> Vec3 {
+        aim(self.yaw, self.pitch)
+    }
+
+    pub fn hurt(&mut self, damage: f32) {
+        self.health = (self.health - damage).max(0.0);
+        self.hurt_ticks = HURT_TICKS;
     }
 
     /// Turns by the command and says how the body wants to move this tick.

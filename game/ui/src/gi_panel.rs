@@ -1,5 +1,6 @@
-//! The in-game panel for the GI settings (F1 in `headlamp play`), built from
-//! [`GiSettings::FIELDS`] so a new setting gets its slider without touching this file.
+//! The GI settings: their sliders ([`sliders`], also on the Settings screen) and the F1
+//! panel around them, built from [`GiSettings::FIELDS`] so a new setting gets its slider
+//! without touching this file.
 
 use engine::egui;
 use plugin_gi::{FieldInfo, GiSettings};
@@ -14,7 +15,7 @@ const LOGARITHMIC: &[&str] = &["cutoff", "light_budget"];
 
 /// The panel's contents: an on/off checkbox, a slider per numeric field (hover text: the
 /// field's help) and a reset button. Returns whether anything changed.
-pub fn settings_panel(ui: &mut egui::Ui, s: &mut GiSettings) -> bool {
+pub fn sliders(ui: &mut egui::Ui, s: &mut GiSettings) -> bool {
     let before = s.clone();
     ui.checkbox(&mut s.enabled, "enabled").on_hover_text("indirect light on or off");
     for field in GiSettings::FIELDS {
@@ -61,58 +62,15 @@ pub fn window(ctx: &egui::Context, open: &mut bool, s: &mut GiSettings) -> bool 
         .open(open)
         .default_pos(egui::pos2(8.0, 40.0))
         .resizable(false)
-        .show(ctx, |ui| changed = settings_panel(ui, s));
+        .show(ctx, |ui| changed = sliders(ui, s));
     changed
-}
-
-/// Drives egui without a window, for tests of the panel and of the app around it.
-#[cfg(test)]
-pub(crate) mod egui_harness {
-    use engine::egui;
-
-    const SCREEN: egui::Vec2 = egui::vec2(800.0, 600.0);
-
-    pub fn input(events: Vec<egui::Event>) -> egui::RawInput {
-        egui::RawInput {
-            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, SCREEN)),
-            events,
-            ..Default::default()
-        }
-    }
-
-    /// Every text drawn in a pass, with the rectangle it covers.
-    pub fn texts(output: &egui::FullOutput) -> Vec<(String, egui::Rect)> {
-        fn walk(shape: &egui::Shape, out: &mut Vec<(String, egui::Rect)>) {
-            match shape {
-                egui::Shape::Text(t) => out.push((t.galley.text().to_owned(), t.visual_bounding_rect())),
-                egui::Shape::Vec(shapes) => shapes.iter().for_each(|s| walk(s, out)),
-                _ => {}
-            }
-        }
-        let mut out = Vec::new();
-        for clipped in &output.shapes {
-            walk(&clipped.shape, &mut out);
-        }
-        out
-    }
-
-    /// A press and release of the primary button at `at`, as three passes see them.
-    pub fn click(at: egui::Pos2) -> [Vec<egui::Event>; 3] {
-        let button = |pressed| egui::Event::PointerButton {
-            pos: at,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        };
-        [vec![egui::Event::PointerMoved(at)], vec![button(true)], vec![button(false)]]
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    use super::egui_harness::{input, texts};
+    use crate::egui_harness::{click, input, texts};
 
     /// Runs one pass of the panel inside a window, as `headlamp play` shows it.
     fn pass(ctx: &egui::Context, s: &mut GiSettings, events: Vec<egui::Event>) -> (bool, egui::FullOutput) {
@@ -175,7 +133,7 @@ mod tests {
             output = Some(pass(&ctx, &mut s, Vec::new()).1);
         }
         let (_, rect) = texts(&output.unwrap()).into_iter().find(|(t, _)| t == "Reset to defaults").unwrap();
-        let [moved, pressed, released] = super::egui_harness::click(rect.center());
+        let [moved, pressed, released] = click(rect.center());
         pass(&ctx, &mut s, moved);
         pass(&ctx, &mut s, pressed);
         let (changed, _) = pass(&ctx, &mut s, released);

@@ -1,0 +1,146 @@
+//! How the simulation's things look: crawlers, pickups, the lamp lying somewhere, shot marks and
+//! the exit sign, as engine mesh instances. They are drawn into the G-buffer and the lamp's view
+//! like the level, so the headlamp lights them, they cast shadows and they bounce light.
+
+use engine::frame::{Instance, MeshId};
+use engine::glam::{Mat4, Quat, Vec3};
+use engine::gpu::Gpu;
+use engine::primitives;
+use engine::renderer::Renderer;
+
+use crate::sim::enemy::{self, Mind};
+use crate::sim::{LevelEntities, PickupKind, WorldState};
+
+/// Shot marks are drawn this long (a spark for the first few ticks, then a dark mark).
+const SPARK_TICKS: u32 = 5;
+
+/// The meshes, added to a renderer once.
+pub struct ActorMeshes {
+    crawler: MeshId,
+    eye: MeshId,
+    battery: MeshId,
+    ammo: MeshId,
+    medkit: MeshId,
+    lamp: MeshId,
+    lens: MeshId,
+    mark: MeshId,
+    sign: MeshId,
+}
+
+impl ActorMeshes {
+    pub fn add_to(renderer: &mut Renderer, gpu: &Gpu) -> Self {
+        let mut add = |(v, i): (Vec<_>, Vec<u32>)| renderer.add_mesh(gpu, &v, &i);
+        let c = enemy::body_config();
+        Self {
+            crawler: add(primitives::capsule(c.radius, c.height, 12)),
+            eye: add(primitives::uv_sphere(0.045, 8, 6)),
+            battery: add(primitives::cylinder(0.08, 0.26, 12)),
+            ammo: add(primitives::cuboid(Vec3::new(0.16, 0.09, 0.11))),
+            medkit: add(primitives::cuboid(Vec3::new(0.17, 0.1, 0.13))),
+            lamp: add(primitives::cylinder(0.06, 0.12, 12)),
+            lens: add(primitives::cylinder(0.045, 0.01, 12)),
+            mark: add(primitives::cuboid(Vec3::new(0.05, 0.05, 0.004))),
+            sign: add(primitives::cuboid(Vec3::new(0.35, 0.12, 0.02))),
+        }
+    }
+
+    /// The instances of `state`, blending moving things between `prev` (t = 0) and it (t = 1).
+    /// `time` (seconds, for idle animation only) never feeds back into the simulation.
+    pub fn instances(
+        &self,
+        entities: &LevelEntities,
+        prev: &WorldState,
+        state: &WorldState,
+        t: f32,
+        time: f32,
+    ) -> Vec<Instance> {
+        let mut out = Vec::new();
+        for (i, e) in state.enemies.iter().enumerate() {
+            let p = prev.enemies.get(i).unwrap_or(e);
+            self.crawler(&mut out, p.body.position.lerp(e.body.position, t), e);
+        }
+        for p in state.pickups.iter().filter(|p| !p.taken) {
+            // Turn slowly and glow faintly, so they can be found in the dark.
+            let spin = Quat::from_rotation_y(time * 1.5);
+            let (mesh, color, glow, lift) = match p.kind {
+                PickupKind::Battery => (self.battery, [0.8, 0.65, 0.1], [0.25, 0.2, 0.02], 0.0),
+                PickupKind::Ammo => (self.ammo, [0.3, 0.33, 0.18], [0.06, 0.07, 0.03], 0.09),
+                PickupKind::Health => (self.medkit, [0.85, 0.85, 0.85], [0.3, 0.02, 0.02], 0.1),
+            };
+            let transform = Mat4::from_rotation_translation(spin, p.position + Vec3::Y * (lift + 0.02));
+            out.push(Instance { mesh, transform, base_color: color, emissive: glow });
+        }
+        let lamp = &state.lamp;
+        if !lamp.attached {
+            let position = if lamp.resting { lamp.position } else { prev.lamp.position.lerp(lamp.position, t) };
+            let aim = crate::sim::player::aim(lamp.yaw, lamp.pitch);
+            // The cylinder's axis (+Y) along the beam, the whole lamp just behind the point the
+            // light leaves from: it must not stand in its own beam (the lamp's view, which casts
+            // its shadows, sees only what is in front of that point).
+            let turn = Quat::from_rotation_arc(Vec3::Y, aim);
+            let body = Mat4::from_rotation_translation(turn, position - aim * 0.15);
+            out.push(Instance { mesh: self.lamp, transform: body, base_color: [0.08, 0.08, 0.09], emissive: [0.0; 3] });
+            let glow = 6.0 * lamp.brightness();
+            let lens = Mat4::from_rotation_translation(turn, position - aim * 0.03);
+            out.push(Instance {
+                mesh: self.lens,
+                transform: lens,
+                base_color: [0.9; 3],
+                emissive: [glow, glow * 0.9, glow * 0.75],
+            });
+        }
+        for m in &state.impacts {
+            let age = state.tick.saturating_sub(m.tick);
+            if m.on_enemy && age > SPARK_TICKS {
+                continue;
+            }
+            // Flat against the surface (the mark's thin axis is Z), a hair off it.
+            let turn = Quat::from_rotation_arc(Vec3::Z, m.normal);
+            let transform = Mat4::from_rotation_translation(turn, m.position + m.normal * 0.006);
+            let (color, glow) =
+                if age <= SPARK_TICKS { ([1.0, 0.8, 0.5], [8.0, 4.0, 1.2]) } else { ([0.02; 3], [0.0; 3]) };
+            out.push(Instance { mesh: self.mark, transform, base_color: color, emissive: glow });
+        }
+        if let Some(exit) = &entities.exit {
+            // A green sign over the way out, facing the way the marker does.
+            let transform =
+                Mat4::from_rotation_translation(Quat::from_rotation_y(exit.yaw), exit.position + Vec3::Y * 2.2);
+            out.push(Instance { mesh: self.sign, transform, base_color: [0.1, 0.5, 0.15], emissive: [0.1, 1.6, 0.35] });
+        }
+        out
+    }
+
+    fn crawler(&self, out: &mut Vec<Instance>, position: Vec3, e: &crate::sim::Enemy) {
+        let facing = Quat::from_rotation_y(e.yaw);
+        let (pose, eyes_lit) = match e.mind {
+            // Lying on its back.
+            Mind::Dead => (Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2), 0.0),
+            // Rearing back to strike.
+            Mind::Attack => (Quat::from_rotation_x(0.35), 4.0),
+            Mind::Chase | Mind::Alert => (Quat::from_rotation_x(-0.25), 4.0),
+            Mind::Patrol | Mind::Search => (Quat::from_rotation_x(-0.35), 0.6),
+        };
+        let lift = if e.mind == Mind::Dead { enemy::body_config().radius } else { 0.0 };
+        let body = Mat4::from_rotation_translation(facing * pose, position + Vec3::Y * lift);
+        let flinch = e.flinch as f32 / 12.0;
+        let color = if e.mind == Mind::Dead { [0.25, 0.22, 0.2] } else { [0.62, 0.58, 0.52] };
+        out.push(Instance {
+            mesh: self.crawler,
+            transform: body,
+            base_color: color,
+            emissive: [0.6 * flinch, 0.0, 0.0],
+        });
+        if e.mind == Mind::Dead {
+            return;
+        }
+        for side in [-0.12, 0.12] {
+            let eye = body * Mat4::from_translation(Vec3::new(side, 1.28, -0.3));
+            out.push(Instance {
+                mesh: self.eye,
+                transform: eye,
+                base_color: [0.1; 3],
+                emissive: [eyes_lit, eyes_lit * 0.12, 0.0],
+            });
+        }
+    }
+}

@@ -1,0 +1,179 @@
+//! The window app without a window: frames, menus, the GI panel, replays, the HUD.
+
+use super::*;
+use game_ui::egui_harness::{click, find, input, texts};
+use plugin_gi::GiSettings;
+
+fn app() -> GameWindow {
+    let level = engine::scene::load_level(&crate::default_level()).unwrap();
+    let sim = Simulation::new(&level, crate::sim::level_world(&level).unwrap(), 60, 1);
+    let config = Config::default();
+    GameWindow::new(level, sim, TickSource::live(&config, None), config)
+}
+
+/// Runs one frame of `ui` and returns what it drew.
+fn frame_ui(app: &mut GameWindow, ctx: &egui::Context, events: Vec<egui::Event>) -> egui::FullOutput {
+    ctx.run_ui(input(events), |ui| app.ui(ui.ctx()))
+}
+
+/// A few frames with no input (egui lays windows out over its first frames), and the last.
+fn settled_ui(app: &mut GameWindow, ctx: &egui::Context) -> egui::FullOutput {
+    (0..3).map(|_| frame_ui(app, ctx, Vec::new())).last().unwrap()
+}
+
+fn press(key: KeyCode) -> Input {
+    let mut input = Input::default();
+    input.key_event(key, true, false);
+    input
+}
+
+/// A change made in the F1 panel reaches the GI plugin that renders the next frame.
+#[test]
+fn the_gi_panel_drives_the_gi_plugin() {
+    let plugin = plugin_gi::GiPlugin::new(GiSettings::default());
+    let gi = plugin.handle();
+    let mut app = app();
+    app.gi = Some(gi.clone());
+    app.gi_panel_open = true;
+    let ctx = egui::Context::default();
+    let mut output = None;
+    for _ in 0..3 {
+        output = Some(frame_ui(&mut app, &ctx, Vec::new()));
+    }
+    let (_, rect) = texts(&output.unwrap()).into_iter().find(|(t, _)| t == "enabled").expect("the panel is shown");
+    assert!(gi.settings().enabled);
+    for events in click(rect.center()) {
+        frame_ui(&mut app, &ctx, events);
+    }
+    assert!(!app.config.gi.enabled, "the click unticks 'enabled'");
+    assert!(!gi.settings().enabled, "the plugin sees the change");
+}
+
+/// Frames of any length run the ticks their time pays for, and the view sits between the
+/// two latest states.
+#[test]
+fn frames_run_fixed_ticks_and_draw_between_them() {
+    let mut app = app();
+    let input = Input::default();
+    app.update(&input, 1.0 / 144.0);
+    assert_eq!(app.sim.state.tick, 0, "less than a tick of time runs no tick");
+    for _ in 0..143 {
+        app.update(&input, 1.0 / 144.0);
+    }
+    assert!((59..=60).contains(&app.sim.state.tick), "a second runs 60 ticks, not {}", app.sim.state.tick);
+    let (a, b) = (app.prev.player.eye(), app.sim.state.player.eye());
+    let eye = app.view.view.camera.position;
+    assert!(eye.distance(a) <= a.distance(b) + 1e-5 && eye.distance(b) <= a.distance(b) + 1e-5);
+}
+
+/// The main menu and the pause menu stop the world; Esc pauses, Play and Resume go on.
+#[test]
+fn menus_pause_the_world() {
+    let mut app = app();
+    app.menus = Menus::new();
+    let ctx = egui::Context::default();
+    for _ in 0..30 {
+        app.update(&Input::default(), 0.1);
+    }
+    assert_eq!(app.sim.state.tick, 0, "no ticks on the main menu");
+    assert_eq!(app.capture_wanted(), Some(false), "the mouse is free for the menu");
+    let out = settled_ui(&mut app, &ctx);
+    let play = find(&texts(&out), "Play").expect("the main menu shows Play");
+    for events in click(play.center()) {
+        frame_ui(&mut app, &ctx, events);
+    }
+    assert_eq!(app.menus.screen(), Screen::Playing);
+    assert_eq!(app.capture_wanted(), Some(true), "playing grabs the mouse");
+    for _ in 0..5 {
+        app.update(&Input::default(), 0.1);
+    }
+    let ticks = app.sim.state.tick;
+    assert!(ticks >= 29, "{ticks}");
+    app.update(&press(KeyCode::Escape), 0.5);
+    assert_eq!(app.menus.screen(), Screen::Paused);
+    app.update(&Input::default(), 0.5);
+    assert_eq!(app.sim.state.tick, ticks, "paused");
+}
+
+/// Losing shows the game-over screen after a moment, and Restart starts the level afresh.
+#[test]
+fn death_ends_the_game_and_restart_begins_again() {
+    let mut app = app();
+    app.sim.state.player.hurt(1000.0);
+    app.update(&Input::default(), 0.05);
+    assert_eq!(app.sim.state.outcome, Outcome::Lost);
+    for _ in 0..40 {
+        app.update(&Input::default(), 0.05);
+    }
+    assert_eq!(app.menus.screen(), Screen::GameOver { won: false });
+    app.menu_action(MenuAction::Restart);
+    assert_eq!(app.sim.state.outcome, Outcome::Playing);
+    assert_eq!(app.sim.state.tick, 0);
+    assert_eq!(app.sim.state.player.health, player::MAX_HEALTH);
+    assert_eq!(app.menus.screen(), Screen::Playing);
+}
+
+/// The HUD shows the simulation's numbers, and what the lamp keys do.
+#[test]
+fn the_hud_follows_the_state() {
+    let mut app = app();
+    app.sim.state.weapon.magazine = 7;
+    app.sim.state.lamp.attached = false;
+    app.sim.state.lamp.position = app.sim.state.player.eye() + engine::glam::Vec3::X;
+    let hud = app.hud();
+    assert_eq!((hud.ammo_in_magazine, hud.enemies_total), (7, 4));
+    assert_eq!(hud.hint.as_deref(), Some("G — pick up the lamp"));
+    let ctx = egui::Context::default();
+    let out = settled_ui(&mut app, &ctx);
+    let shown: Vec<String> = texts(&out).into_iter().map(|(t, _)| t).collect();
+    assert!(shown.iter().any(|t| t.contains('7') && t.contains("24")), "ammo shown: {shown:?}");
+    assert!(shown.iter().any(|t| t.contains("pick up the lamp")), "{shown:?}");
+}
+
+/// Watching a replay in the window runs exactly its ticks, ends on its last state, and
+/// notices (and shows) a command that no longer gives the recorded state.
+#[test]
+fn watching_a_replay_runs_its_ticks_and_notices_divergence() {
+    let level_path = crate::default_level();
+    let level = engine::scene::load_level(&level_path).unwrap();
+    let commands = crate::script::parse("30 forward\n10 turn 20\n", Path::new("t.txt")).unwrap();
+    let path = std::env::temp_dir().join(format!("headlamp-watch-{}.replay", std::process::id()));
+    let gi = GiSettings::default();
+    let rec = crate::replay_cmd::record_commands(&level, &level_path, &commands, 1, &gi, path.clone()).unwrap();
+    rec.save().unwrap();
+    let watch = |tamper: bool| {
+        let mut loaded = LoadedReplay::open(&path, Some(&level_path)).unwrap();
+        if tamper {
+            loaded.commands[5].forward = -127;
+        }
+        let sim = loaded.simulation().unwrap();
+        let source = TickSource::Replay { replay: Box::new(loaded), next: 0, diverged: None };
+        let mut app = GameWindow::new(level.clone(), sim, source, Config::default());
+        for _ in 0..60 {
+            app.update(&Input::default(), 0.05);
+        }
+        app
+    };
+    let app = watch(false);
+    assert_eq!(app.sim.state.tick, 40);
+    assert_eq!(app.sim.state.hash(), rec.last_hash());
+    assert_eq!(app.prev, app.sim.state, "a finished replay holds its last state");
+    assert!(matches!(app.source, TickSource::Replay { diverged: None, .. }));
+    assert!(app.status().contains("finished"), "{}", app.status());
+    let app = watch(true);
+    assert!(matches!(app.source, TickSource::Replay { diverged: Some(Divergence { tick: 6, .. }), .. }));
+    assert!(app.status().contains("diverged at tick 6"), "{}", app.status());
+    let _ = std::fs::remove_file(&path);
+}
+
+#[test]
+fn restarting_a_recording_keeps_the_first_attempt() {
+    let dir = std::env::temp_dir().join(format!("headlamp-attempts-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let first = dir.join("run.replay");
+    assert_eq!(crate::recording::next_attempt_path(&first), dir.join("run-2.replay"));
+    std::fs::write(dir.join("run-2.replay"), b"x").unwrap();
+    assert_eq!(crate::recording::next_attempt_path(&first), dir.join("run-3.replay"));
+    assert_eq!(crate::recording::next_attempt_path(&dir.join("run-3.replay")), dir.join("run-4.replay"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

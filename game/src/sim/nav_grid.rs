@@ -1,0 +1,194 @@
+//! Where a crawler can walk, as a grid of floor cells built once from the level's collision
+//! geometry, and the way from one cell to another by breadth-first search. Crawlers go
+//! straight at what they can see; the grid takes them round walls and through doorways to
+//! what they cannot.
+//!
+//! One floor per (x, z) column: a cell's floor is the first walkable surface below a probe
+//! from [`PROBE_HEIGHT`] above the level's lowest point, so levels with rooms stacked over
+//! each other are walked on their lowest storey only.
+
+use glam::Vec3;
+use physics::LevelCollision;
+
+/// Cell size, m: below a crawler's width, so a 1.4 m doorway is at least two cells wide.
+pub const CELL: f32 = 0.5;
+/// Probes start this far above the level's lowest point, m.
+pub const PROBE_HEIGHT: f32 = 2.0;
+/// Neighbouring floors further apart in height than this are not connected, m.
+const MAX_STEP: f32 = 0.36;
+/// The body is tested this far above the floor, so low steps and the floor itself do not
+/// count as obstacles, m.
+const CLEARANCE: f32 = 0.3;
+
+pub struct NavGrid {
+    /// World x, z of cell (0, 0)'s centre.
+    origin: (f32, f32),
+    width: usize,
+    depth: usize,
+    /// Floor height per cell, or None where a body does not fit.
+    floor: Vec<Option<f32>>,
+}
+
+/// 8-connected: the 4 sides, then the 4 diagonals (taken only when both sides beside them are
+/// open, so paths never cut a wall's corner).
+const NEIGHBOURS: [(i32, i32); 8] = [(1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1)];
+
+impl NavGrid {
+    /// Cells where a capsule of `radius` and `height` stands on walkable floor.
+    pub fn build(level: &LevelCollision, radius: f32, height: f32) -> Self {
+        let (lo, hi) = level.bounds();
+        let width = (((hi.x - lo.x) / CELL).ceil() as usize).max(1);
+        let depth = (((hi.z - lo.z) / CELL).ceil() as usize).max(1);
+        let origin = (lo.x + 0.5 * CELL, lo.z + 0.5 * CELL);
+        let top = lo.y + PROBE_HEIGHT;
+        let mut floor = Vec::with_capacity(width * depth);
+        for j in 0..depth {
+            for i in 0..width {
+                let (x, z) = (origin.0 + i as f32 * CELL, origin.1 + j as f32 * CELL);
+                let ground = level.cast_ray(Vec3::new(x, top, z), -Vec3::Y, PROBE_HEIGHT + 1.0);
+                let cell = ground.filter(|g| g.normal.y >= 0.7).map(|g| g.point.y).filter(|&y| {
+                    level.capsule_fits(Vec3::new(x, y + CLEARANCE, z), radius, (height - CLEARANCE).max(2.0 * radius))
+                });
+                floor.push(cell);
+            }
+        }
+        Self { origin, width, depth, floor }
+    }
+
+    fn cell_of(&self, p: Vec3) -> Option<(usize, usize)> {
+        let i = ((p.x - self.origin.0) / CELL).round();
+        let j = ((p.z - self.origin.1) / CELL).round();
+        (i >= 0.0 && j >= 0.0 && (i as usize) < self.width && (j as usize) < self.depth)
+            .then_some((i as usize, j as usize))
+    }
+
+    fn centre(&self, (i, j): (usize, usize)) -> Vec3 {
+        let y = self.floor[j * self.width + i].unwrap_or(0.0);
+        Vec3::new(self.origin.0 + i as f32 * CELL, y, self.origin.1 + j as f32 * CELL)
+    }
+
+    pub fn walkable(&self, p: Vec3) -> bool {
+        self.cell_of(p).is_some_and(|(i, j)| self.floor[j * self.width + i].is_some())
+    }
+
+    fn open(&self, i: i32, j: i32) -> Option<f32> {
+        if i < 0 || j < 0 || i as usize >= self.width || j as usize >= self.depth {
+            return None;
+        }
+        self.floor[j as usize * self.width + i as usize]
+    }
+
+    /// Whether one may walk from cell a to its neighbour (di, dj).
+    fn passable(&self, i: i32, j: i32, di: i32, dj: i32) -> bool {
+        let (Some(here), Some(there)) = (self.open(i, j), self.open(i + di, j + dj)) else { return false };
+        let corner_clear = di == 0 || dj == 0 || (self.open(i + di, j).is_some() && self.open(i, j + dj).is_some());
+        (here - there).abs() <= MAX_STEP && corner_clear
+    }
+
+    /// The next point to walk to on the shortest way from `from` to `to`: the centre of the
+    /// neighbouring cell one step nearer. None when either end is off the grid or no way joins
+    /// them. Ties go to the first neighbour in [`NEIGHBOURS`] order: deterministic.
+    pub fn next_step(&self, from: Vec3, to: Vec3) -> Option<Vec3> {
+        let start = self.cell_of(from)?;
+        let goal = self.nearest_open(self.cell_of(to)?)?;
+        // Breadth-first from the goal (diagonals cost the same as sides, which keeps it a BFS;
+        // the crawler steers straight once it can see its target anyway).
+        let mut distance = vec![u32::MAX; self.floor.len()];
+        let index = |(i, j): (usize, usize)| j * self.width + i;
+        let mut queue = std::collections::VecDeque::from([goal]);
+        distance[index(goal)] = 0;
+        let start = self.nearest_open(start)?;
+        while let Some((i, j)) = queue.pop_front() {
+            if (i, j) == start {
+                break;
+            }
+            for (di, dj) in NEIGHBOURS {
+                let (ni, nj) = (i as i32 + di, j as i32 + dj);
+                if self.passable(i as i32, j as i32, di, dj) && distance[index((ni as usize, nj as usize))] == u32::MAX
+                {
+                    distance[index((ni as usize, nj as usize))] = distance[index((i, j))] + 1;
+                    queue.push_back((ni as usize, nj as usize));
+                }
+            }
+        }
+        let here = distance[index(start)];
+        if here == u32::MAX {
+            return None;
+        }
+        if here == 0 {
+            return Some(to);
+        }
+        NEIGHBOURS
+            .iter()
+            .map(|&(di, dj)| (start.0 as i32 + di, start.1 as i32 + dj, di, dj))
+            .filter(|&(_, _, di, dj)| self.passable(start.0 as i32, start.1 as i32, di, dj))
+            .map(|(i, j, _, _)| (i as usize, j as usize))
+            .find(|&c| distance[index(c)] == here - 1)
+            .map(|c| self.centre(c))
+    }
+
+    /// The cell itself if open, else an open one of its neighbours (a body pressed against a
+    /// wall can have its centre in a blocked cell).
+    fn nearest_open(&self, (i, j): (usize, usize)) -> Option<(usize, usize)> {
+        std::iter::once((0, 0))
+            .chain(NEIGHBOURS)
+            .map(|(di, dj)| (i as i32 + di, j as i32 + dj))
+            .find(|&(a, b)| self.open(a, b).is_some())
+            .map(|(a, b)| (a as usize, b as usize))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 10 m square room split by a wall along z = 0 with a 1.5 m gap at x ∈ [3, 4.5].
+    fn room() -> LevelCollision {
+        let mut p = vec![
+            Vec3::new(-5.0, 0.0, -5.0),
+            Vec3::new(5.0, 0.0, -5.0),
+            Vec3::new(5.0, 0.0, 5.0),
+            Vec3::new(-5.0, 0.0, 5.0),
+        ];
+        let mut t = vec![[0, 2, 1], [0, 3, 2]];
+        for (x0, x1) in [(-5.0, 3.0), (4.5, 5.0)] {
+            let b = p.len() as u32;
+            p.extend([
+                Vec3::new(x0, 0.0, 0.0),
+                Vec3::new(x1, 0.0, 0.0),
+                Vec3::new(x1, 3.0, 0.0),
+                Vec3::new(x0, 3.0, 0.0),
+            ]);
+            t.extend([[b, b + 1, b + 2], [b, b + 2, b + 3]]);
+        }
+        LevelCollision::from_triangles(&p, &t).unwrap()
+    }
+
+    #[test]
+    fn the_way_round_a_wall_goes_through_its_gap() {
+        let level = room();
+        let grid = NavGrid::build(&level, 0.35, 1.5);
+        assert!(grid.walkable(Vec3::new(-2.0, 0.0, -2.0)));
+        assert!(!grid.walkable(Vec3::new(-2.0, 0.0, 0.0)), "the wall");
+        // Walk the grid's steps from one side to the other.
+        let (mut at, goal) = (Vec3::new(-3.0, 0.0, -3.0), Vec3::new(-3.0, 0.0, 3.0));
+        let mut through_gap = false;
+        for _ in 0..100 {
+            if at.distance(goal) < 0.1 {
+                break;
+            }
+            at = grid.next_step(at, goal).expect("a way exists");
+            through_gap |= at.z.abs() < 0.3 && (3.0..=4.5).contains(&at.x);
+        }
+        assert!(at.distance(goal) < 0.1 && through_gap, "ended at {at}");
+    }
+
+    #[test]
+    fn no_way_into_a_closed_room() {
+        let level = room();
+        let grid = NavGrid::build(&level, 1.9, 1.5);
+        // Too wide for the gap.
+        assert_eq!(grid.next_step(Vec3::new(-2.0, 0.0, -3.0), Vec3::new(-2.0, 0.0, 3.0)), None);
+        assert_eq!(grid.next_step(Vec3::new(50.0, 0.0, 0.0), Vec3::ZERO), None, "off the grid");
+    }
+}

@@ -1,0 +1,256 @@
+//! The config file's TOML, both ways. Parsing keeps every key's position (`toml::Spanned`) so
+//! an error can name its line; it checks each value itself rather than through serde derives,
+//! so the messages speak of keys and ranges, not of Rust types.
+
+use std::collections::BTreeMap;
+use std::fmt::Write;
+use std::ops::{Range, RangeInclusive};
+
+use plugin_gi::GiSettings;
+use serde::Deserialize;
+use toml::{Spanned, Value};
+
+use super::Config;
+use crate::bindings::{Action, Binding, KeyBindings, SLOTS};
+
+/// A problem found in the text; [`super::ConfigError`] adds the file.
+pub(super) struct ParseError {
+    pub line: Option<usize>,
+    pub key: Option<String>,
+    pub problem: String,
+}
+
+const SECTIONS: [&str; 4] = ["controls", "video", "bindings", "gi"];
+const CONTROLS: [&str; 3] = ["sensitivity", "invert_y", "fov_deg"];
+const VIDEO: [&str; 3] = ["render_scale", "vsync", "show_fps"];
+
+pub(super) fn write(c: &Config) -> String {
+    let range = |r: &RangeInclusive<f32>| format!("{:?} to {:?}", r.start(), r.end());
+    let mut out = String::new();
+    // `{:?}` writes an f32 as the shortest text that reads back as the same f32, always
+    // with a decimal point or exponent, so TOML keeps it a float.
+    let _ = write!(
+        out,
+        "# Headlamp settings. The game writes this file when a setting changes; you may edit it.\n\
+         # A missing key takes its default; an unknown key or a bad value is reported, and the\n\
+         # file is then kept as config.toml.bad while the game runs with the defaults.\n\
+         \n\
+         [controls]\n\
+         # mouse look speed, 1.0 = {base} radians per pixel ({sens})\n\
+         sensitivity = {:?}\n\
+         invert_y = {}\n\
+         # vertical field of view, degrees ({fov})\n\
+         fov_deg = {:?}\n\
+         \n\
+         [video]\n\
+         # 3D view resolution relative to the window ({scale})\n\
+         render_scale = {:?}\n\
+         vsync = {}\n\
+         show_fps = {}\n\
+         \n\
+         [bindings]\n\
+         # Up to {SLOTS} keys or buttons per action, e.g. KeyW, Digit1, F5, Space, Tab, ShiftLeft,\n\
+         # ControlLeft, AltLeft, ArrowUp, Comma, Numpad0, MouseLeft, MouseRight, MouseMiddle.\n",
+        c.mouse_sensitivity,
+        c.invert_y,
+        c.fov_deg,
+        c.render_scale,
+        c.vsync,
+        c.show_fps,
+        base = Config::BASE_RADIANS_PER_PIXEL,
+        sens = range(&Config::SENSITIVITY_RANGE),
+        fov = range(&Config::FOV_RANGE),
+        scale = range(&Config::RENDER_SCALE_RANGE),
+    );
+    for action in Action::ALL {
+        let names: Vec<String> = c.bindings.bindings(action).map(|b| format!("\"{b}\"")).collect();
+        let _ = writeln!(out, "{} = [{}]", action.name(), names.join(", "));
+    }
+    let _ = write!(out, "\n[gi]\n# global illumination\nenabled = {}\n", c.gi.enabled);
+    for field in GiSettings::FIELDS {
+        let v = c.gi.get(field.name).expect("every entry of GiSettings::FIELDS has a value");
+        let _ = writeln!(out, "# {} ({} to {})", field.help, field.min, field.max);
+        if field.integer {
+            let _ = writeln!(out, "{} = {}", field.name, v as i64);
+        } else {
+            let _ = writeln!(out, "{} = {:?}", field.name, v as f32);
+        }
+    }
+    out
+}
+
+type Entries = BTreeMap<Spanned<String>, Spanned<Value>>;
+
+/// Every top-level key, for unknown-section errors.
+type Top = BTreeMap<Spanned<String>, Spanned<Value>>;
+
+/// The sections with their keys' positions (unknown sections are caught via [`Top`]).
+#[derive(Deserialize)]
+struct Sections {
+    #[serde(default)]
+    controls: Entries,
+    #[serde(default)]
+    video: Entries,
+    #[serde(default)]
+    bindings: Entries,
+    #[serde(default)]
+    gi: Entries,
+}
+
+pub(super) fn parse(text: &str) -> Result<Config, ParseError> {
+    let line_of = |span: Range<usize>| text[..span.start.min(text.len())].matches('\n').count() + 1;
+    let syntax = |e: toml::de::Error| ParseError {
+        line: e.span().map(line_of),
+        key: None,
+        problem: format!("not valid TOML: {}", e.message().trim().replace('\n', " ")),
+    };
+    let error = |key: &Spanned<String>, section: &str, problem: String| ParseError {
+        line: Some(line_of(key.span())),
+        key: Some(if section.is_empty() { key.get_ref().clone() } else { format!("{section}.{}", key.get_ref()) }),
+        problem,
+    };
+
+    let top: Top = toml::from_str(text).map_err(syntax)?;
+    for (key, value) in by_position(&top) {
+        if !SECTIONS.contains(&key.get_ref().as_str()) {
+            return Err(error(key, "", format!("unknown key (the sections are {})", list(&SECTIONS))));
+        }
+        if !value.get_ref().is_table() {
+            return Err(error(key, "", format!("must be a section, [{}]", key.get_ref())));
+        }
+    }
+    let sections: Sections = toml::from_str(text).map_err(syntax)?;
+
+    let mut c = Config::default();
+    for (key, value) in by_position(&sections.controls) {
+        let value = value.get_ref();
+        let set = match key.get_ref().as_str() {
+            "sensitivity" => number(value, &Config::SENSITIVITY_RANGE).map(|v| c.mouse_sensitivity = v),
+            "invert_y" => boolean(value).map(|v| c.invert_y = v),
+            "fov_deg" => number(value, &Config::FOV_RANGE).map(|v| c.fov_deg = v),
+            _ => Err(unknown(&CONTROLS)),
+        };
+        set.map_err(|problem| error(key, "controls", problem))?;
+    }
+    for (key, value) in by_position(&sections.video) {
+        let value = value.get_ref();
+        let set = match key.get_ref().as_str() {
+            "render_scale" => number(value, &Config::RENDER_SCALE_RANGE).map(|v| c.render_scale = v),
+            "vsync" => boolean(value).map(|v| c.vsync = v),
+            "show_fps" => boolean(value).map(|v| c.show_fps = v),
+            _ => Err(unknown(&VIDEO)),
+        };
+        set.map_err(|problem| error(key, "video", problem))?;
+    }
+    c.bindings = bindings(&sections.bindings, &error)?;
+    for (key, value) in by_position(&sections.gi) {
+        gi_setting(&mut c.gi, key.get_ref(), value.get_ref()).map_err(|problem| error(key, "gi", problem))?;
+    }
+    Ok(c)
+}
+
+/// Actions listed in the file take exactly the bindings listed; the others keep their
+/// defaults, less any key the listed ones took (so an older file never binds a key twice).
+fn bindings(
+    entries: &Entries,
+    error: &impl Fn(&Spanned<String>, &str, String) -> ParseError,
+) -> Result<KeyBindings, ParseError> {
+    let mut listed: Vec<(Action, Vec<Binding>)> = Vec::new();
+    for (key, value) in by_position(entries) {
+        let fail = |problem: String| error(key, "bindings", problem);
+        let Some(action) = Action::from_name(key.get_ref()) else {
+            let names: Vec<&str> = Action::ALL.iter().map(|a| a.name()).collect();
+            return Err(fail(unknown(&names)));
+        };
+        let names: Vec<&str> = match value.get_ref() {
+            Value::String(name) => vec![name],
+            Value::Array(items) => items
+                .iter()
+                .map(|v| {
+                    v.as_str().ok_or_else(|| format!("expected names in quotes, like \"KeyW\", found {}", v.type_str()))
+                })
+                .collect::<Result<_, _>>()
+                .map_err(&fail)?,
+            _ => return Err(fail(list_expected(value))),
+        };
+        if names.len() > SLOTS {
+            return Err(fail(format!("at most {SLOTS} keys or buttons, found {}", names.len())));
+        }
+        let mut bound = Vec::new();
+        for name in names {
+            let binding: Binding = name.parse().map_err(|e| fail(format!("{e}")))?;
+            if bound.contains(&binding) {
+                return Err(fail(format!("'{name}' is listed twice")));
+            }
+            if let Some((other, _)) = listed.iter().find(|(_, b)| b.contains(&binding)) {
+                return Err(fail(format!("'{name}' is also bound to {}; a key does one thing", other.name())));
+            }
+            bound.push(binding);
+        }
+        listed.push((action, bound));
+    }
+    let mut result = KeyBindings::default();
+    for action in Action::ALL {
+        match listed.iter().find(|(a, _)| *a == action) {
+            Some((_, bound)) => result.replace(action, bound),
+            None => {
+                let kept: Vec<Binding> =
+                    result.bindings(action).filter(|b| !listed.iter().any(|(_, l)| l.contains(b))).collect();
+                result.replace(action, &kept);
+            }
+        }
+    }
+    Ok(result)
+}
+
+fn gi_setting(gi: &mut GiSettings, name: &str, value: &Value) -> Result<(), String> {
+    let text = match (name, value) {
+        ("enabled", Value::Boolean(b)) => b.to_string(),
+        ("enabled", other) => return Err(format!("expected true or false, found {}", other.type_str())),
+        (_, Value::Integer(i)) => i.to_string(),
+        (_, Value::Float(f)) => format!("{f:?}"),
+        (_, other) if GiSettings::FIELDS.iter().any(|f| f.name == name) => {
+            return Err(format!("expected a number, found {}", other.type_str()))
+        }
+        _ => String::new(),
+    };
+    // `GiSettings::set` validates like `--set gi.NAME=VALUE`; its messages start with the key,
+    // which the error names already.
+    gi.set(name, &text).map_err(|e| e.strip_prefix(&format!("gi.{name}: ")).unwrap_or(&e).to_owned())
+}
+
+/// Entries in the order they appear in the file, so the first error reported is the first one.
+fn by_position(entries: &Entries) -> Vec<(&Spanned<String>, &Spanned<Value>)> {
+    let mut v: Vec<_> = entries.iter().collect();
+    v.sort_by_key(|(k, _)| k.span().start);
+    v
+}
+
+fn number(value: &Value, range: &RangeInclusive<f32>) -> Result<f32, String> {
+    let v = match value {
+        Value::Float(f) => *f,
+        Value::Integer(i) => *i as f64,
+        other => return Err(format!("expected a number, found {}", other.type_str())),
+    };
+    // Compared as the f32 it becomes: the file's "0.1" is the range's 0.1f32.
+    if !range.contains(&(v as f32)) {
+        return Err(format!("{v} is out of range ({:?} to {:?})", range.start(), range.end()));
+    }
+    Ok(v as f32)
+}
+
+fn boolean(value: &Value) -> Result<bool, String> {
+    value.as_bool().ok_or_else(|| format!("expected true or false, found {}", value.type_str()))
+}
+
+fn list_expected(value: &Spanned<Value>) -> String {
+    format!("expected a list of key or button names like [\"KeyW\"], found {}", value.get_ref().type_str())
+}
+
+fn unknown(known: &[&str]) -> String {
+    format!("unknown key (known: {})", list(known))
+}
+
+fn list(names: &[&str]) -> String {
+    names.join(", ")
+}

@@ -1,0 +1,242 @@
+use std::ffi::OsString;
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use engine::input::{KeyCode, MouseButton};
+use plugin_gi::GiSettings;
+
+use super::{config_path_from, Config, ConfigError};
+use crate::bindings::{Action, Binding, KeyBindings};
+
+/// A fresh, empty folder of the test's own.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("headlamp-ui-{}-{name}", std::process::id()));
+    let _ = fs::remove_dir_all(&dir);
+    fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn parse_err(text: &str) -> ConfigError {
+    Config::from_toml(text, Path::new("/home/me/.config/headlamp/config.toml")).unwrap_err()
+}
+
+/// Every field different from its default.
+fn changed() -> Config {
+    let mut bindings = KeyBindings::default();
+    bindings.set(Action::Jump, 1, Binding::Mouse(MouseButton::Right));
+    bindings.set(Action::Fire, 1, Binding::Key(KeyCode::Tab));
+    bindings.set(Action::MoveForward, 0, Binding::Key(KeyCode::ArrowUp));
+    bindings.clear(Action::Crouch, 1);
+    let gi = GiSettings {
+        enabled: false,
+        light_budget: 300,
+        merge_normal_deg: 12.5,
+        merge_distance: 0.3,
+        cutoff: 2.5e-5,
+        d_min: 0.07,
+        bounces: 3,
+        resolution_scale: 0.3,
+    };
+    Config {
+        mouse_sensitivity: 1.37,
+        invert_y: true,
+        fov_deg: 93.3,
+        render_scale: 0.6,
+        vsync: false,
+        show_fps: true,
+        bindings,
+        gi,
+    }
+}
+
+#[test]
+fn every_setting_survives_save_and_load() {
+    let c = changed();
+    let d = Config::default();
+    // The test is only as good as this: every field is off its default.
+    assert!(c.mouse_sensitivity != d.mouse_sensitivity && c.invert_y != d.invert_y && c.fov_deg != d.fov_deg);
+    assert!(c.render_scale != d.render_scale && c.vsync != d.vsync && c.show_fps != d.show_fps);
+    for action in [Action::Jump, Action::Fire, Action::MoveForward, Action::Crouch] {
+        assert_ne!(c.bindings.get(action), d.bindings.get(action), "{action:?}");
+    }
+    for field in GiSettings::FIELDS {
+        assert_ne!(c.gi.get(field.name), d.gi.get(field.name), "gi.{}", field.name);
+    }
+    assert_ne!(c.gi.enabled, d.gi.enabled);
+
+    let dir = scratch("round-trip");
+    let path = dir.join("nested/headlamp/config.toml");
+    c.save(&path).unwrap();
+    assert_eq!(Config::load(&path).unwrap(), c);
+    // Saving again replaces the file; no temporary file is left behind.
+    d.save(&path).unwrap();
+    assert_eq!(Config::load(&path).unwrap(), d);
+    let left: Vec<_> = fs::read_dir(path.parent().unwrap()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(left, vec![OsString::from("config.toml")]);
+    let _ = fs::remove_dir_all(dir);
+}
+
+#[test]
+fn the_file_is_readable_toml() {
+    let text = Config::default().to_toml();
+    for expected in ["[controls]\n", "sensitivity = 1.0\n", "[video]\n", "render_scale = 1.0\n", "[bindings]\n"] {
+        assert!(text.contains(expected), "{expected:?} in\n{text}");
+    }
+    for expected in ["MoveForward = [\"KeyW\"]\n", "Crouch = [\"KeyC\", \"ControlLeft\"]\n", "Fire = [\"MouseLeft\"]\n"]
+    {
+        assert!(text.contains(expected), "{expected:?} in\n{text}");
+    }
+    for expected in ["[gi]\n", "enabled = true\n", "light_budget = 1024\n", "cutoff = 0.001\n"] {
+        assert!(text.contains(expected), "{expected:?} in\n{text}");
+    }
+    assert!(text.parse::<toml::Table>().is_ok());
+}
+
+#[test]
+fn a_missing_file_gives_the_defaults() {
+    let dir = scratch("missing");
+    assert_eq!(Config::load(&dir.join("config.toml")).unwrap(), Config::default());
+    let (c, warning) = Config::load_or_default(&dir.join("config.toml"));
+    assert_eq!((c, warning), (Config::default(), None));
+    assert!(!dir.join("config.toml.bad").exists());
+    let _ = fs::remove_dir_all(dir);
+}
+
+#[test]
+fn missing_keys_take_defaults() {
+    let c =
+        Config::from_toml("[controls]\nfov_deg = 80\n\n[bindings]\nJump = [\"KeyG\"]\n", Path::new("c.toml")).unwrap();
+    assert_eq!(c.fov_deg, 80.0);
+    assert_eq!(c.mouse_sensitivity, 1.0);
+    assert_eq!(c.gi, GiSettings::default());
+    assert_eq!(c.bindings.get(Action::Jump), [Some(Binding::Key(KeyCode::KeyG)), None]);
+    assert_eq!(c.bindings.get(Action::LampDetach), [None, None], "G went to Jump, so the default G is dropped");
+    assert_eq!(c.bindings.get(Action::MoveForward), KeyBindings::default().get(Action::MoveForward));
+    assert_eq!(Config::from_toml("", Path::new("c.toml")).unwrap(), Config::default());
+    // A single name is accepted for one binding, an empty list for none.
+    let c = Config::from_toml("[bindings]\nReload = \"KeyE\"\nSprint = []\n", Path::new("c.toml")).unwrap();
+    assert_eq!(c.bindings.get(Action::Reload), [Some(Binding::Key(KeyCode::KeyE)), None]);
+    assert_eq!(c.bindings.get(Action::Sprint), [None, None]);
+}
+
+#[test]
+fn bad_toml_names_the_file_and_line() {
+    let e = parse_err("[controls]\nsensitivity = 1.0\nfov_deg = = 70\n");
+    assert_eq!(e.line, Some(3), "{e}");
+    let text = e.to_string();
+    assert!(text.starts_with("/home/me/.config/headlamp/config.toml: line 3: "), "{text}");
+    assert!(text.contains("not valid TOML"), "{text}");
+    assert!(!text.contains('\n'), "one line: {text}");
+}
+
+#[test]
+fn unknown_keys_are_named() {
+    let e = parse_err("[controls]\nsensitivity = 1.0\nsensitivty = 2.0\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(3), Some("controls.sensitivty")), "{e}");
+    let text = e.to_string();
+    assert!(text.contains("config.toml: line 3: controls.sensitivty: unknown key"), "{text}");
+    assert!(text.contains("sensitivity, invert_y, fov_deg"), "lists the known keys: {text}");
+
+    let e = parse_err("[controls]\nfov_deg = 70\n\n[audio]\nvolume = 1\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(4), Some("audio")), "{e}");
+    let e = parse_err("[video]\nvsync = true\nhdr = true\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(3), Some("video.hdr")), "{e}");
+    let e = parse_err("[gi]\nlite_budget = 3\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(2), Some("gi.lite_budget")), "{e}");
+    assert!(e.problem.contains("unknown setting"), "{e}");
+    let e = parse_err("[bindings]\nShoot = [\"MouseLeft\"]\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(2), Some("bindings.Shoot")), "{e}");
+    assert!(e.problem.contains("MoveForward"), "lists the actions: {e}");
+    let e = parse_err("controls = 3\n");
+    assert_eq!(e.key.as_deref(), Some("controls"), "{e}");
+}
+
+#[test]
+fn out_of_range_and_mistyped_values_are_named() {
+    let e = parse_err("[controls]\n\nfov_deg = 140\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(3), Some("controls.fov_deg")), "{e}");
+    assert!(e.to_string().ends_with("controls.fov_deg: 140 is out of range (50.0 to 110.0)"), "{e}");
+    let e = parse_err("[video]\nrender_scale = 0.1\n");
+    assert_eq!(e.key.as_deref(), Some("video.render_scale"), "{e}");
+    let e = parse_err("[controls]\ninvert_y = \"yes\"\n");
+    assert!(e.to_string().contains("controls.invert_y: expected true or false, found string"), "{e}");
+    let e = parse_err("[gi]\nbounces = 7\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(2), Some("gi.bounces")), "{e}");
+    assert!(e.problem.contains("out of range") && !e.problem.starts_with("gi."), "{e}");
+    let e = parse_err("[gi]\nlight_budget = \"many\"\n");
+    assert!(e.to_string().contains("gi.light_budget: expected a number, found string"), "{e}");
+}
+
+#[test]
+fn unknown_key_names_are_named() {
+    let e = parse_err("[bindings]\nMoveForward = [\"KeyW\"]\nJump = [\"Spacebar\"]\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(3), Some("bindings.Jump")), "{e}");
+    assert!(e.to_string().contains("config.toml: line 3: bindings.Jump: unknown key or button name 'Spacebar'"), "{e}");
+    let e = parse_err("[bindings]\nJump = [\"Space\", \"KeyJ\", \"KeyK\"]\n");
+    assert!(e.problem.contains("at most 2"), "{e}");
+    let e = parse_err("[bindings]\nJump = [\"KeyW\"]\nMoveForward = [\"KeyW\"]\n");
+    assert_eq!(e.key.as_deref(), Some("bindings.MoveForward"), "{e}");
+    assert!(e.problem.contains("also bound to Jump"), "{e}");
+    let e = parse_err("[bindings]\nJump = [3]\n");
+    assert!(e.problem.contains("found integer"), "{e}");
+}
+
+#[test]
+fn a_bad_file_is_kept_before_defaults_are_used() {
+    let dir = scratch("bad");
+    let path = dir.join("config.toml");
+    let bad = "[controls]\nfov_deg = 140 # my precious setting\n";
+    fs::write(&path, bad).unwrap();
+    let (c, warning) = Config::load_or_default(&path);
+    assert_eq!(c, Config::default());
+    let warning = warning.expect("a warning to show");
+    let kept = dir.join("config.toml.bad");
+    assert!(warning.contains("controls.fov_deg") && warning.contains(&kept.display().to_string()), "{warning}");
+    assert_eq!(fs::read_to_string(&kept).unwrap(), bad);
+    assert_eq!(fs::read_to_string(&path).unwrap(), bad, "the file itself is untouched");
+    // Loading again reuses the identical copy.
+    let (_, again) = Config::load_or_default(&path);
+    assert!(again.unwrap().contains("config.toml.bad"));
+    assert!(!dir.join("config.toml.bad2").exists());
+    // The game then saves over the file: the copy stays.
+    c.save(&path).unwrap();
+    assert_eq!(Config::load(&path).unwrap(), c);
+    assert_eq!(fs::read_to_string(&kept).unwrap(), bad);
+    // A later, different bad file does not replace the first copy.
+    fs::write(&path, "not toml [").unwrap();
+    let (_, warning) = Config::load_or_default(&path);
+    assert!(warning.unwrap().contains("config.toml.bad2"));
+    assert_eq!(fs::read_to_string(dir.join("config.toml.bad2")).unwrap(), "not toml [");
+    assert_eq!(fs::read_to_string(&kept).unwrap(), bad);
+    let _ = fs::remove_dir_all(dir);
+}
+
+#[test]
+fn the_config_path_follows_the_environment() {
+    let env = |vars: &'static [(&'static str, &'static str)]| {
+        move |name: &str| vars.iter().find(|(k, _)| *k == name).map(|(_, v)| OsString::from(v))
+    };
+    assert_eq!(
+        config_path_from(env(&[("HEADLAMP_CONFIG", "/tmp/h.toml"), ("HOME", "/home/me")])),
+        Some(PathBuf::from("/tmp/h.toml"))
+    );
+    assert_eq!(config_path_from(env(&[])), None);
+    if cfg!(all(unix, not(target_os = "macos"))) {
+        assert_eq!(
+            config_path_from(env(&[("XDG_CONFIG_HOME", "/xdg"), ("HOME", "/home/me")])),
+            Some(PathBuf::from("/xdg/headlamp/config.toml"))
+        );
+        assert_eq!(
+            config_path_from(env(&[("HEADLAMP_CONFIG", ""), ("XDG_CONFIG_HOME", "rel"), ("HOME", "/home/me")])),
+            Some(PathBuf::from("/home/me/.config/headlamp/config.toml")),
+            "an empty HEADLAMP_CONFIG and a relative XDG_CONFIG_HOME are ignored"
+        );
+    }
+}
+
+#[test]
+fn sensitivity_is_a_multiplier_of_the_old_constant() {
+    let c = Config { mouse_sensitivity: 2.0, ..Config::default() };
+    assert_eq!(Config::default().radians_per_pixel(), 0.0025);
+    assert_eq!(c.radians_per_pixel(), 0.005);
+}

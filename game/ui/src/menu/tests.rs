@@ -1,0 +1,344 @@
+use engine::egui::{self, Rect};
+use engine::input::{Input, KeyCode, MouseButton};
+
+use super::settings_screen::{SLIDER_WIDTH, UNBOUND, WAITING};
+use super::{MenuAction, Menus, Screen};
+use crate::bindings::{Action, Binding, KeyBindings};
+use crate::config::Config;
+use crate::egui_harness::{click_with, find, input, key_down, texts};
+
+/// The menus in a headless egui, as the game drives them each frame.
+struct Harness {
+    ctx: egui::Context,
+    menus: Menus,
+    config: Config,
+    /// The texts the last pass drew.
+    shown: Vec<(String, Rect)>,
+}
+
+impl Harness {
+    fn new() -> Self {
+        let mut h =
+            Self { ctx: egui::Context::default(), menus: Menus::new(), config: Config::default(), shown: Vec::new() };
+        h.settle();
+        h
+    }
+
+    fn pass_with(&mut self, events: Vec<egui::Event>, game_input: &Input) -> Option<MenuAction> {
+        let mut action = None;
+        let output =
+            self.ctx.run_ui(input(events), |ui| action = self.menus.show(ui.ctx(), &mut self.config, game_input));
+        self.shown = texts(&output);
+        action
+    }
+
+    fn pass(&mut self, events: Vec<egui::Event>) -> Option<MenuAction> {
+        self.pass_with(events, &Input::default())
+    }
+
+    /// Idle passes until nothing moves: a new screen's panel sizes itself over its first passes.
+    fn settle(&mut self) {
+        for n in 0..12 {
+            let before = std::mem::take(&mut self.shown);
+            assert_eq!(self.pass(Vec::new()), None, "an idle frame does nothing");
+            // The first pass of a new panel only measures it and draws nothing.
+            if n >= 2 && self.shown == before {
+                return;
+            }
+        }
+        panic!("the menu keeps moving: {:?}", self.shown);
+    }
+
+    fn rect(&self, text: &str) -> Rect {
+        let shown: Vec<&str> = self.shown.iter().map(|(t, _)| t.as_str()).collect();
+        find(&self.shown, text).unwrap_or_else(|| panic!("'{text}' is not shown; shown: {shown:?}"))
+    }
+
+    fn shows(&self, text: &str) -> bool {
+        find(&self.shown, text).is_some()
+    }
+
+    /// Clicks at `at`; returns what the menus returned on the way (at most one action).
+    fn click_at(&mut self, at: egui::Pos2, button: egui::PointerButton) -> Option<MenuAction> {
+        let actions: Vec<MenuAction> = click_with(button, at).into_iter().filter_map(|e| self.pass(e)).collect();
+        assert!(actions.len() <= 1, "one click, one action: {actions:?}");
+        actions.first().copied()
+    }
+
+    /// Clicks the text, then lets the next screen settle.
+    fn click(&mut self, text: &str) -> Option<MenuAction> {
+        let action = self.click_at(self.rect(text).center(), egui::PointerButton::Primary);
+        self.settle();
+        action
+    }
+
+    /// The binding cell of `action` (its label on the settings screen) in `slot`.
+    fn cell(&self, action: Action, slot: usize) -> Rect {
+        let row = self.rect(action.label());
+        let mut cells: Vec<Rect> = self
+            .shown
+            .iter()
+            .filter(|(_, r)| (r.center().y - row.center().y).abs() < 6.0 && r.left() > row.right())
+            .map(|(_, r)| *r)
+            .collect();
+        cells.sort_by(|a, b| a.left().total_cmp(&b.left()));
+        assert_eq!(cells.len(), 2, "two cells beside '{}'", action.label());
+        cells[slot]
+    }
+
+    /// The point `fraction` of the way along the slider on the row that ends in `label`.
+    /// The row is: the rail ([`SLIDER_WIDTH`] wide), the value box (at least 40 points wide,
+    /// its text centred with 4 points of padding), then the label, 8 points apart.
+    fn slider_point(&self, label: &str, fraction: f32) -> egui::Pos2 {
+        let label = self.rect(label);
+        let value = self
+            .shown
+            .iter()
+            .filter(|(_, r)| (r.center().y - label.center().y).abs() < 6.0 && r.right() < label.left())
+            .map(|(_, r)| *r)
+            .reduce(|a, b| a.union(b))
+            .expect("a value beside the slider's label");
+        let box_left = value.center().x - (value.width() / 2.0 + 4.0).max(20.0);
+        let rail_right = box_left - 8.0;
+        egui::pos2(rail_right - SLIDER_WIDTH * (1.0 - fraction), label.center().y)
+    }
+
+    fn open_settings_tab(&mut self, tab: &str) {
+        assert_eq!(self.click("Settings"), None);
+        assert_eq!(self.menus.screen(), Screen::Settings);
+        assert_eq!(self.click(tab), None, "changing tabs changes no setting");
+    }
+}
+
+fn key(code: KeyCode) -> Input {
+    let mut input = Input::default();
+    input.key_event(code, true, false);
+    input
+}
+
+#[test]
+fn clicking_play_on_the_main_menu_returns_play() {
+    let mut h = Harness::new();
+    assert_eq!(h.menus.screen(), Screen::MainMenu);
+    assert!(h.shows(super::TITLE) && h.shows("Settings") && h.shows("Quit"));
+    assert_eq!(h.click("Play"), Some(MenuAction::Play));
+    assert_eq!(h.menus.screen(), Screen::Playing);
+    assert!(!h.menus.is_open());
+    assert!(h.shown.is_empty(), "playing shows no menu: {:?}", h.shown);
+}
+
+#[test]
+fn quit_returns_quit() {
+    let mut h = Harness::new();
+    assert_eq!(h.click("Quit"), Some(MenuAction::Quit));
+}
+
+#[test]
+fn esc_in_paused_resumes() {
+    let mut h = Harness::new();
+    h.menus.playing();
+    // The game pauses on the frame's Esc; the same Esc must not resume at once.
+    h.menus.pause();
+    assert_eq!(h.pass_with(Vec::new(), &key(KeyCode::Escape)), None);
+    assert_eq!(h.menus.screen(), Screen::Paused);
+    h.settle();
+    for text in ["Paused", "Resume", "Restart", "Settings", "Main menu", "Quit"] {
+        assert!(h.shows(text), "'{text}' on the pause menu");
+    }
+    assert_eq!(h.pass_with(Vec::new(), &key(KeyCode::Escape)), Some(MenuAction::Resume));
+    assert_eq!(h.menus.screen(), Screen::Playing);
+    // Esc through egui alone (a widget had keyboard focus) works too.
+    h.menus.pause();
+    h.settle();
+    assert_eq!(h.pass(vec![key_down(egui::Key::Escape)]), Some(MenuAction::Resume));
+}
+
+#[test]
+fn pause_menu_buttons() {
+    let mut h = Harness::new();
+    for (text, action, screen) in [
+        ("Resume", MenuAction::Resume, Screen::Playing),
+        ("Restart", MenuAction::Restart, Screen::Playing),
+        ("Main menu", MenuAction::MainMenu, Screen::MainMenu),
+    ] {
+        h.menus.playing();
+        h.menus.pause();
+        h.settle();
+        assert_eq!(h.click(text), Some(action), "{text}");
+        assert_eq!(h.menus.screen(), screen, "{text}");
+    }
+}
+
+#[test]
+fn game_over_says_how_it_ended() {
+    let mut h = Harness::new();
+    h.menus.game_over(false);
+    h.settle();
+    assert!(h.shows("You died"));
+    assert_eq!(h.click("Restart"), Some(MenuAction::Restart));
+    h.menus.game_over(true);
+    h.settle();
+    assert!(h.shows("You made it out") && !h.shows("You died"));
+    assert_eq!(h.click("Main menu"), Some(MenuAction::MainMenu));
+    assert_eq!(h.menus.screen(), Screen::MainMenu);
+}
+
+#[test]
+fn settings_go_back_where_they_came_from() {
+    let mut h = Harness::new();
+    h.click("Settings");
+    assert_eq!(h.menus.screen(), Screen::Settings);
+    assert_eq!(h.click("Back"), None);
+    assert_eq!(h.menus.screen(), Screen::MainMenu);
+    h.menus.playing();
+    h.menus.pause();
+    h.settle();
+    h.click("Settings");
+    assert_eq!(h.menus.screen(), Screen::Settings);
+    assert_eq!(h.pass_with(Vec::new(), &key(KeyCode::Escape)), None);
+    assert_eq!(h.menus.screen(), Screen::Paused, "Esc goes back to the pause menu, not into the game");
+}
+
+#[test]
+fn menus_keep_clicks_from_the_game() {
+    let mut h = Harness::new();
+    let corner = egui::pos2(5.0, 595.0);
+    h.pass(vec![egui::Event::PointerMoved(corner)]);
+    assert!(h.ctx.egui_wants_pointer_input(), "a click beside the menu must not capture the mouse");
+    h.menus.playing();
+    h.pass(vec![egui::Event::PointerMoved(corner)]);
+    assert!(!h.ctx.egui_wants_pointer_input(), "while playing the clicks are the game's");
+}
+
+#[test]
+fn clicking_a_binding_then_pressing_a_key_rebinds() {
+    let mut h = Harness::new();
+    h.open_settings_tab("Key bindings");
+    assert!(h.shows("W") && h.shows("Left mouse"));
+    let cell = h.cell(Action::MoveForward, 0);
+    assert_eq!(h.click_at(cell.center(), egui::PointerButton::Primary), None);
+    h.settle();
+    assert!(h.shows(WAITING), "the cell asks for a key");
+    assert_eq!(h.pass_with(Vec::new(), &key(KeyCode::KeyK)), Some(MenuAction::ConfigChanged));
+    assert_eq!(h.config.bindings.get(Action::MoveForward), [Some(Binding::Key(KeyCode::KeyK)), None]);
+    assert_eq!(h.config.bindings.action_of(Binding::Key(KeyCode::KeyW)), None);
+    h.settle();
+    assert!(!h.shows(WAITING) && h.shows("K"));
+    assert_eq!(h.menus.screen(), Screen::Settings);
+}
+
+#[test]
+fn rebinding_a_key_used_elsewhere_moves_it_and_says_so() {
+    let mut h = Harness::new();
+    h.open_settings_tab("Key bindings");
+    let cell = h.cell(Action::Jump, 1);
+    assert!(find(&h.shown, UNBOUND).is_some());
+    h.click_at(cell.center(), egui::PointerButton::Primary);
+    assert_eq!(h.pass_with(Vec::new(), &key(KeyCode::KeyW)), Some(MenuAction::ConfigChanged));
+    assert_eq!(
+        h.config.bindings.get(Action::Jump),
+        [Some(Binding::Key(KeyCode::Space)), Some(Binding::Key(KeyCode::KeyW))]
+    );
+    assert_eq!(h.config.bindings.get(Action::MoveForward), [None, None]);
+    h.settle();
+    let notice = "W now does Jump; it was taken from Move forward, which has no key left.";
+    assert!(h.shows(notice), "{:?}", h.shown);
+    // Reset to defaults brings it back.
+    assert_eq!(h.click("Reset to defaults"), Some(MenuAction::ConfigChanged));
+    assert_eq!(h.config.bindings, KeyBindings::default());
+}
+
+#[test]
+fn esc_cancels_a_rebinding_then_leaves() {
+    let mut h = Harness::new();
+    h.open_settings_tab("Key bindings");
+    h.click_at(h.cell(Action::Reload, 0).center(), egui::PointerButton::Primary);
+    h.settle();
+    assert!(h.shows(WAITING));
+    assert_eq!(h.pass_with(Vec::new(), &key(KeyCode::Escape)), None);
+    assert_eq!(h.menus.screen(), Screen::Settings, "the first Esc only cancels");
+    assert_eq!(h.config, Config::default());
+    assert!(!h.shows(WAITING));
+    assert_eq!(h.pass_with(Vec::new(), &key(KeyCode::Escape)), None);
+    assert_eq!(h.menus.screen(), Screen::MainMenu);
+}
+
+#[test]
+fn mouse_buttons_and_egui_only_keys_bind_too() {
+    let mut h = Harness::new();
+    h.open_settings_tab("Key bindings");
+    // A right click over the menu reaches egui only (the window loop keeps it from `Input`).
+    let cell = h.cell(Action::Fire, 1);
+    h.click_at(cell.center(), egui::PointerButton::Primary);
+    let actions: Vec<_> =
+        click_with(egui::PointerButton::Secondary, cell.center()).into_iter().filter_map(|e| h.pass(e)).collect();
+    assert_eq!(actions, [MenuAction::ConfigChanged]);
+    assert_eq!(h.config.bindings.get(Action::Fire)[1], Some(Binding::Mouse(MouseButton::Right)));
+    h.settle();
+    assert!(!h.shows(WAITING), "the release of that click does not start waiting again");
+    // Tab: egui always consumes it, so it arrives as an egui event only.
+    h.click_at(h.cell(Action::Reload, 1).center(), egui::PointerButton::Primary);
+    assert_eq!(h.pass(vec![key_down(egui::Key::Tab)]), Some(MenuAction::ConfigChanged));
+    assert_eq!(h.config.bindings.get(Action::Reload)[1], Some(Binding::Key(KeyCode::Tab)));
+    // A mouse button through the game's input, and left/right modifiers told apart.
+    h.settle();
+    h.click_at(h.cell(Action::Sprint, 1).center(), egui::PointerButton::Primary);
+    let mut input = Input::default();
+    input.key_event(KeyCode::ShiftRight, true, false);
+    assert_eq!(h.pass_with(Vec::new(), &input), Some(MenuAction::ConfigChanged));
+    assert_eq!(h.config.bindings.get(Action::Sprint)[1], Some(Binding::Key(KeyCode::ShiftRight)));
+    // A right-click on a cell that is not waiting clears it.
+    h.settle();
+    assert_eq!(
+        h.click_at(h.cell(Action::Sprint, 1).center(), egui::PointerButton::Secondary),
+        Some(MenuAction::ConfigChanged)
+    );
+    assert_eq!(h.config.bindings.get(Action::Sprint)[1], None);
+}
+
+#[test]
+fn controls_sliders_change_the_config() {
+    let mut h = Harness::new();
+    h.open_settings_tab("Controls");
+    assert!(h.shows("1.00") && h.shows("60") && h.shows("°"), "{:?}", h.shown);
+    let at = h.slider_point("Mouse sensitivity", 0.15);
+    assert_eq!(h.click_at(at, egui::PointerButton::Primary), Some(MenuAction::ConfigChanged));
+    assert!(h.config.mouse_sensitivity < 0.5, "{}", h.config.mouse_sensitivity);
+    h.settle();
+    let at = h.slider_point("Field of view", 0.85);
+    assert_eq!(h.click_at(at, egui::PointerButton::Primary), Some(MenuAction::ConfigChanged));
+    assert!(h.config.fov_deg > 90.0 && h.config.fov_deg <= 110.0, "{}", h.config.fov_deg);
+    h.settle();
+    assert_eq!(h.click("Invert mouse Y"), Some(MenuAction::ConfigChanged));
+    assert!(h.config.invert_y);
+}
+
+#[test]
+fn video_and_gi_settings_change_the_config() {
+    let mut h = Harness::new();
+    h.open_settings_tab("Video");
+    assert!(h.shows("100%"), "{:?}", h.shown);
+    let at = h.slider_point("Render scale", 0.02);
+    assert_eq!(h.click_at(at, egui::PointerButton::Primary), Some(MenuAction::ConfigChanged));
+    assert!(h.config.render_scale < 0.4, "{}", h.config.render_scale);
+    h.settle();
+    assert_eq!(h.click("Show FPS"), Some(MenuAction::ConfigChanged));
+    assert!(h.config.show_fps);
+    assert_eq!(h.click("Global illumination"), None);
+    assert_eq!(h.click("enabled"), Some(MenuAction::ConfigChanged));
+    assert!(!h.config.gi.enabled);
+    let at = h.slider_point("bounces", 0.95);
+    assert_eq!(h.click_at(at, egui::PointerButton::Primary), Some(MenuAction::ConfigChanged));
+    assert_eq!(h.config.gi.bounces, 3);
+}
+
+#[test]
+fn a_warning_shows_until_dismissed() {
+    let mut h = Harness::new();
+    h.menus.show_warning("config.toml: line 2: controls.fov_deg: 140 is out of range");
+    h.settle();
+    assert!(h.shows("config.toml: line 2: controls.fov_deg: 140 is out of range"));
+    assert_eq!(h.click("OK"), None);
+    assert!(!h.shows("config.toml: line 2: controls.fov_deg: 140 is out of range"));
+    assert_eq!(h.menus.screen(), Screen::MainMenu);
+}
