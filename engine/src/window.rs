@@ -268,6 +268,7 @@ impl<A: WindowApp> ApplicationHandler for Runner<'_, A> {
                 }
             }
             WindowEvent::Focused(focused) => {
+                log::debug!("focused: {focused}");
                 self.focused = focused;
                 if !focused {
                     self.input.release_all();
@@ -290,6 +291,9 @@ impl<A: WindowApp> ApplicationHandler for Runner<'_, A> {
             }
             WindowEvent::MouseInput { state, button, .. } => {
                 let down = state == ElementState::Pressed;
+                // A click in the window means it has the user: some X setups without a window
+                // manager never report focus until the pointer is grabbed.
+                self.focused |= down;
                 if down && ui_consumed {
                     return; // a click on the UI
                 }
