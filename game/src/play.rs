@@ -339,6 +339,15 @@ impl WindowApp for GameWindow {
         self.renderer = Some(renderer);
         self.gi = Some(gi);
         self.apply_config();
+        let adapter = gpu.adapter.get_info();
+        if adapter.device_type == engine::wgpu::DeviceType::Cpu && self.config.gi.enabled {
+            self.menus.show_warning(format!(
+                "{} renders on the CPU: with global illumination on, expect a frame every second \
+                 or two. Settings > Global illumination > untick \"enabled\" (or lower the render \
+                 scale) for a playable direct-lit game.",
+                adapter.name
+            ));
+        }
         Ok(())
     }
 
