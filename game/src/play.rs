@@ -101,6 +101,7 @@ pub struct GameWindow {
     ticks_this_frame: u32,
     overlay_open: bool,
     pass_times: Vec<(String, f64)>,
+    /// Frames drawn since the overlay was opened.
     frames: u32,
     gi_panel_open: bool,
     quit: bool,
@@ -357,6 +358,7 @@ impl WindowApp for GameWindow {
         self.time += dt;
         if input.pressed(KeyCode::F3) {
             self.overlay_open = !self.overlay_open;
+            self.frames = 0;
             if let Some(r) = &mut self.renderer {
                 r.set_timing(self.overlay_open);
             }
@@ -436,7 +438,8 @@ impl WindowApp for GameWindow {
         let renderer = self.renderer.as_mut().expect("init runs before render");
         renderer.render(gpu, &self.view.view, target, view)?;
         self.frames += 1;
-        if self.overlay_open && self.frames.is_multiple_of(TIMING_EVERY) {
+        // The first timed frame is the one after opening; then every TIMING_EVERY.
+        if self.overlay_open && (self.frames == 2 || self.frames.is_multiple_of(TIMING_EVERY)) {
             if let Some(times) = renderer.last_pass_times(gpu) {
                 self.pass_times = times;
             }
