@@ -161,6 +161,10 @@ pub struct ScriptArgs {
     /// A GI setting, e.g. gi.light_budget=256 (repeatable); stored in the replay.
     #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
     pub settings: Vec<(String, String)>,
+    /// Print the world after each line of the script, with the turn and look that would aim
+    /// at each crawler: for authoring scripts against the game.
+    #[arg(long)]
+    pub trace: bool,
 }
 
 /// The GI settings `--set` and `--gi` ask for, starting from the defaults.

@@ -11,6 +11,7 @@ pub mod recording;
 pub mod render_cmd;
 pub mod replay_cmd;
 pub mod script;
+pub mod script_trace;
 pub mod sim;
 pub mod view;
 

@@ -1,5 +1,6 @@
 //! `headlamp record`, `headlamp replay` and `headlamp script`.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context};
@@ -130,11 +131,26 @@ pub fn snapshot_name(tick: u32) -> String {
     format!("tick_{tick:06}.png")
 }
 
-/// Simulates a script's commands and writes them, with their hashes, as a replay.
+/// Simulates a script's commands and writes them, with their hashes, as a replay; with
+/// `--trace`, printing the world after each line.
 pub fn script(args: &ScriptArgs) -> anyhow::Result<()> {
     let gi = crate::cli::gi_settings(&args.settings, args.gi).map_err(|e| anyhow!("--set {e}"))?;
-    let commands = crate::script::read(&args.script).map_err(|e| anyhow!(e))?;
+    let (commands, steps) = crate::script::read_steps(&args.script).map_err(|e| anyhow!(e))?;
     let level = engine::scene::load_level(&args.level)?;
+    if args.trace {
+        let mut sim =
+            Simulation::new(&level, crate::sim::level_world(&level)?, FixedClock::DEFAULT_TICK_RATE, args.seed);
+        let mut done = 0;
+        let mut stdout = std::io::stdout().lock();
+        for (line, end) in steps {
+            commands[done..end].iter().for_each(|c| sim.step(c));
+            done = end;
+            // A reader that stops early (`| head`) is not an error worth a panic.
+            if writeln!(stdout, "{}", crate::script_trace::describe(line, &sim.state)).is_err() {
+                break;
+            }
+        }
+    }
     let recorder = record_commands(&level, &args.level, &commands, args.seed, &gi, args.out.clone())?;
     recorder.save()?;
     println!(

@@ -29,7 +29,16 @@ pub const MAX_TICKS: u64 = 10_000_000;
 
 /// Parses a script into one command per tick; errors name the file and line.
 pub fn parse(text: &str, path: &Path) -> Result<Vec<TickCommand>, String> {
+    parse_steps(text, path).map(|(commands, _)| commands)
+}
+
+/// Where a script's steps end: its line number (from 1) and the tick count after the step.
+pub type StepEnd = (usize, usize);
+
+/// [`parse`], also saying where each line's step ends.
+pub fn parse_steps(text: &str, path: &Path) -> Result<(Vec<TickCommand>, Vec<StepEnd>), String> {
     let mut out = Vec::new();
+    let mut ends = Vec::new();
     for (n, line) in text.lines().enumerate() {
         let at = |msg: String| format!("{}:{}: {msg}", path.display(), n + 1);
         let line = line.split('#').next().unwrap_or("").trim();
@@ -58,13 +67,19 @@ pub fn parse(text: &str, path: &Path) -> Result<Vec<TickCommand>, String> {
                 buttons: step.held | presses,
             });
         }
+        ends.push((n + 1, out.len()));
     }
-    Ok(out)
+    Ok((out, ends))
 }
 
 pub fn read(path: &Path) -> Result<Vec<TickCommand>, String> {
+    read_steps(path).map(|(commands, _)| commands)
+}
+
+/// [`read`], also saying where each line's step ends.
+pub fn read_steps(path: &Path) -> Result<(Vec<TickCommand>, Vec<StepEnd>), String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    parse(&text, path)
+    parse_steps(&text, path)
 }
 
 #[derive(Default)]

@@ -45,6 +45,29 @@ fn script_then_verify_then_headless() {
     assert_eq!(out.trim(), format!("ticks=131 hash={hash} outcome=playing"));
 }
 
+/// `--trace` shows the world after each line, with where each crawler is and how to aim at it.
+#[test]
+fn script_trace_describes_each_step() {
+    let dir = scratch("trace");
+    let s = dir.join("t.txt");
+    std::fs::write(&s, "# look around\n30 forward\n\n10 turn 90\n").unwrap();
+    let out = dir.join("t.replay");
+    let text = stdout(&headlamp(&[
+        "script",
+        s.to_str().unwrap(),
+        "--level",
+        &cellar(),
+        "--out",
+        out.to_str().unwrap(),
+        "--trace",
+    ]));
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].starts_with("line 2: tick 30 at (0.00, "), "{text}");
+    assert!(lines.iter().any(|l| l.starts_with("line 4: tick 40 ") && l.contains("yaw 90.0")), "{text}");
+    assert_eq!(lines.iter().filter(|l| l.contains("crawler 0:") && l.contains("aim: turn")).count(), 2, "{text}");
+    assert!(lines.last().unwrap().starts_with("wrote "), "{text}");
+}
+
 /// The shipped win replay plays the demo level from the start to a win, as a user (and CI)
 /// checks it.
 #[test]
