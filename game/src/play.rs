@@ -27,6 +27,8 @@ use crate::view::WorldView;
 pub const AUTOSAVE_TICKS: u32 = 600;
 /// After a win or a death the world stays on screen this long before the menu comes up, s.
 const GAME_OVER_DELAY: f32 = 1.5;
+/// A game starts with the controls shown this long, ticks (8 s).
+const CONTROLS_HINT_TICKS: u32 = 480;
 /// The F3 overlay reads GPU pass times this often (reading waits for the GPU), frames.
 const TIMING_EVERY: u32 = 30;
 
@@ -285,12 +287,26 @@ impl GameWindow {
         }
     }
 
-    /// What the lamp keys do right now.
+    /// What the keys do right now: the controls for the first seconds of a game, then what the
+    /// lamp needs.
     fn lamp_hint(&self) -> Option<String> {
+        use game_ui::Action;
         let s = &self.sim.state;
-        let key = |a: game_ui::Action| {
+        let key = |a: Action| {
             self.config.bindings.get(a)[0].map(|b| b.label().into_owned()).unwrap_or_else(|| "(unbound)".into())
         };
+        if s.tick < CONTROLS_HINT_TICKS && s.lamp.attached {
+            let moves = [Action::MoveForward, Action::StrafeLeft, Action::MoveBack, Action::StrafeRight].map(key);
+            return Some(format!(
+                "{} move · {} fire · {} reload · {} lamp on/off · {} set lamp down · {} throw lamp · Esc menu",
+                moves.concat(),
+                key(Action::Fire),
+                key(Action::Reload),
+                key(Action::LampToggle),
+                key(Action::LampDetach),
+                key(Action::LampThrow),
+            ));
+        }
         if !s.lamp.attached {
             return Some(if s.lamp.within_reach(&s.player) {
                 format!("{} — pick up the lamp", key(game_ui::Action::LampDetach))

@@ -117,6 +117,9 @@ fn death_ends_the_game_and_restart_begins_again() {
 #[test]
 fn the_hud_follows_the_state() {
     let mut app = app();
+    let controls = app.hud().hint.unwrap();
+    assert!(controls.starts_with("WASD move · Left mouse fire · R reload"), "the controls first: {controls}");
+    app.sim.state.tick = 1000;
     app.sim.state.weapon.magazine = 7;
     app.sim.state.lamp.attached = false;
     app.sim.state.lamp.position = app.sim.state.player.eye() + engine::glam::Vec3::X;
