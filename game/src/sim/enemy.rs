@@ -89,6 +89,26 @@ pub struct Senses {
     pub in_player_beam: bool,
     /// A gunshot this tick, heard here.
     pub gunshot: bool,
+    /// Away from the other crawlers pressing on this one (zero when none is within
+    /// [`CROWD_RADIUS`]), as a fraction of walking speed.
+    pub crowd: Vec3,
+}
+
+/// Crawlers closer than this (m, between centres) push apart, so a pack does not melt into one
+/// body.
+pub const CROWD_RADIUS: f32 = 0.8;
+
+/// The push away from `others` (alive crawlers' feet) on a crawler at `feet`: for each one
+/// nearer than [`CROWD_RADIUS`], the unit direction away from it scaled by how deep it presses.
+pub fn crowd_push(feet: Vec3, others: impl Iterator<Item = Vec3>) -> Vec3 {
+    others.fold(Vec3::ZERO, |push, other| {
+        let away = horizontal(feet - other);
+        let d = away.length();
+        if d >= CROWD_RADIUS || d < 1e-4 {
+            return push;
+        }
+        push + away / d * (1.0 - d / CROWD_RADIUS)
+    })
 }
 
 /// What an enemy did this tick that the world must apply.
@@ -275,6 +295,9 @@ impl Enemy {
                 let along = way.dot(self.facing()).max(0.0);
                 wish = self.facing() * speed * along;
             }
+        }
+        if s.crowd != Vec3::ZERO {
+            wish += s.crowd * PATROL_SPEED;
         }
         let mv = CharacterMove { wish_velocity: wish, jump: false, crouch: false };
         controller.step(level, &mut self.body, &mv, dt);

@@ -281,7 +281,9 @@ impl Simulation {
         } else {
             (s.lamp.position, player::aim(s.lamp.yaw, s.lamp.pitch))
         };
-        for (e, spawn) in s.enemies.iter_mut().zip(&self.world.entities.enemies) {
+        // Where every crawler stands as the tick begins: each is pushed off the others' spots.
+        let standing: Vec<Option<Vec3>> = s.enemies.iter().map(|e| e.alive().then_some(e.body.position)).collect();
+        for (i, (e, spawn)) in s.enemies.iter_mut().zip(&self.world.entities.enemies).enumerate() {
             let chest = e.body.position + Vec3::Y * 0.8;
             let to = chest - lamp_pos;
             let d = to.length();
@@ -301,6 +303,12 @@ impl Simulation {
                 lamp_seen_at: (in_beam && !s.lamp.attached).then_some(s.lamp.position),
                 in_player_beam: in_beam && s.lamp.attached,
                 gunshot: heard,
+                crowd: if e.alive() {
+                    let others = standing.iter().enumerate().filter(|&(j, _)| j != i);
+                    enemy::crowd_push(e.body.position, others.filter_map(|(_, p)| *p))
+                } else {
+                    Vec3::ZERO
+                },
             };
             if let enemy::Deed::Struck(damage) =
                 e.step(&senses, &spawn.route, level, &self.world.nav, &self.enemy_controller, dt)

@@ -252,3 +252,21 @@ fn reaching_the_exit_wins() {
     run(&mut s, 40, TickCommand { forward: 127, ..Default::default() });
     assert_eq!(s.state.outcome, Outcome::Won);
 }
+
+#[test]
+fn crawlers_do_not_melt_into_one() {
+    // Two crawlers on the same spot, nothing to chase (lamp off, player far away): they part.
+    let mut s = Simulation::at(
+        Vec3::new(25.0, 0.0, 25.0),
+        0,
+        0,
+        world(vec![crawler(0.0, 0.0, 0.0, vec![]), crawler(0.1, 0.0, 0.0, vec![])], vec![], None, None),
+        60,
+        7,
+    );
+    s.state.lamp.on = false;
+    run(&mut s, 120, idle());
+    let (a, b) = (s.state.enemies[0].body.position, s.state.enemies[1].body.position);
+    assert!(a.distance(b) >= enemy::CROWD_RADIUS - 0.05, "{a} {b}");
+    assert_eq!(enemy::crowd_push(Vec3::ZERO, [Vec3::new(1.0, 0.0, 0.0)].into_iter()), Vec3::ZERO, "far enough apart");
+}
