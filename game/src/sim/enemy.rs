@@ -104,7 +104,7 @@ pub fn crowd_push(feet: Vec3, others: impl Iterator<Item = Vec3>) -> Vec3 {
     others.fold(Vec3::ZERO, |push, other| {
         let away = horizontal(feet - other);
         let d = away.length();
-        if d >= CROWD_RADIUS || d < 1e-4 {
+        if !(1e-4..CROWD_RADIUS).contains(&d) {
             return push;
         }
         push + away / d * (1.0 - d / CROWD_RADIUS)
