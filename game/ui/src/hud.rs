@@ -26,6 +26,8 @@ pub struct HudInfo {
     pub hint: Option<String>,
     /// Something that just happened, e.g. "Battery +50%".
     pub message: Option<String>,
+    /// The gun in hand; None draws no gun (e.g. watching from a menu).
+    pub gun: Option<crate::GunPose>,
 }
 
 impl Default for HudInfo {
@@ -46,6 +48,7 @@ impl Default for HudInfo {
             hurt: 0.0,
             hint: None,
             message: None,
+            gun: Some(crate::GunPose::default()),
         }
     }
 }
@@ -65,6 +68,10 @@ const LAMP: Color32 = Color32::from_rgb(250, 225, 140);
 pub fn show(ctx: &egui::Context, hud: &HudInfo) {
     let screen = ctx.content_rect();
     let painter = ctx.layer_painter(egui::LayerId::new(egui::Order::Background, egui::Id::unique("hud painter")));
+    if let Some(pose) = hud.gun {
+        // Under everything else the HUD draws (the hint line may pass over it).
+        ctx.layer_painter(egui::LayerId::background()).extend(crate::gun::shapes(screen, pose));
+    }
     hurt_flash(&painter, screen, hud.hurt);
     crosshair(&painter, screen.center());
     area("hud vitals", Align2::LEFT_BOTTOM, egui::vec2(MARGIN, -MARGIN)).show(ctx, |ui| {

@@ -7,12 +7,14 @@ pub mod bindings;
 pub mod config;
 pub mod egui_harness;
 pub mod gi_panel;
+pub mod gun;
 pub mod hud;
 pub mod menu;
 pub mod overlay;
 
 pub use bindings::{Action, Binding, KeyBindings};
 pub use config::{config_path, Config, ConfigError};
+pub use gun::GunPose;
 pub use hud::HudInfo;
 pub use menu::{MenuAction, Menus, Screen};
 pub use overlay::{FrameRate, OverlayInfo};
