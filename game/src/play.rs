@@ -103,6 +103,8 @@ pub struct GameWindow {
     ticks_this_frame: u32,
     overlay_open: bool,
     pass_times: Vec<(String, f64)>,
+    /// Reflection lights the GI built in the last frame read back (None: not read yet, or GI off).
+    reflection_lights: Option<u32>,
     /// Frames drawn since the overlay was opened.
     frames: u32,
     gi_panel_open: bool,
@@ -138,6 +140,7 @@ impl GameWindow {
             ticks_this_frame: 0,
             overlay_open: false,
             pass_times: Vec::new(),
+            reflection_lights: None,
             frames: 0,
             gi_panel_open: false,
             quit: false,
@@ -348,7 +351,8 @@ impl GameWindow {
             fps: self.frame_rate.fps(),
             frame_ms: self.frame_rate.frame_ms(),
             pass_times_ms: self.pass_times.clone(),
-            reflection_lights: stats.slots,
+            // The lights actually built (read back with the pass times), else the table's slots.
+            reflection_lights: self.reflection_lights.unwrap_or(stats.slots),
             light_capacity: stats.light_capacity,
             ticks: self.ticks_this_frame,
         }
@@ -477,6 +481,11 @@ impl WindowApp for GameWindow {
         if self.overlay_open && (self.frames == 2 || self.frames.is_multiple_of(TIMING_EVERY)) {
             if let Some(times) = renderer.last_pass_times(gpu) {
                 self.pass_times = times;
+            }
+            if self.config.gi.enabled {
+                self.reflection_lights = plugin_gi::readback::lights(gpu, renderer).map(|l| l.len() as u32);
+            } else {
+                self.reflection_lights = Some(0);
             }
         }
         Ok(())
