@@ -103,7 +103,12 @@ pub struct LevelWorld {
 impl LevelWorld {
     pub fn new(collision: LevelCollision, entities: LevelEntities) -> Self {
         let body = enemy::body_config();
-        let nav = nav_grid::NavGrid::build(&collision, body.radius, body.height);
+        // Only crawlers walk the grid: a level without them (any bare scene file) skips it.
+        let nav = if entities.enemies.is_empty() {
+            nav_grid::NavGrid::empty()
+        } else {
+            nav_grid::NavGrid::build(&collision, body.radius, body.height)
+        };
         Self { collision, entities, nav }
     }
 }

@@ -12,6 +12,9 @@ use physics::LevelCollision;
 
 /// Cell size, m: below a crawler's width, so a 1.4 m doorway is at least two cells wide.
 pub const CELL: f32 = 0.5;
+/// A bigger level gets bigger cells, so building the grid stays quick (each cell is a ray and
+/// a shape query); narrow doorways may then close for crawlers.
+pub const MAX_CELLS: usize = 100_000;
 /// Probes start this far above the level's lowest point, m.
 pub const PROBE_HEIGHT: f32 = 2.0;
 /// Neighbouring floors further apart in height than this are not connected, m.
@@ -21,6 +24,8 @@ const MAX_STEP: f32 = 0.36;
 const CLEARANCE: f32 = 0.3;
 
 pub struct NavGrid {
+    /// Edge of a cell, m.
+    cell: f32,
     /// World x, z of cell (0, 0)'s centre.
     origin: (f32, f32),
     width: usize,
@@ -37,14 +42,16 @@ impl NavGrid {
     /// Cells where a capsule of `radius` and `height` stands on walkable floor.
     pub fn build(level: &LevelCollision, radius: f32, height: f32) -> Self {
         let (lo, hi) = level.bounds();
-        let width = (((hi.x - lo.x) / CELL).ceil() as usize).max(1);
-        let depth = (((hi.z - lo.z) / CELL).ceil() as usize).max(1);
-        let origin = (lo.x + 0.5 * CELL, lo.z + 0.5 * CELL);
+        let area = (hi.x - lo.x).max(CELL) * (hi.z - lo.z).max(CELL);
+        let cell = CELL.max((area / MAX_CELLS as f32).sqrt());
+        let width = (((hi.x - lo.x) / cell).ceil() as usize).max(1);
+        let depth = (((hi.z - lo.z) / cell).ceil() as usize).max(1);
+        let origin = (lo.x + 0.5 * cell, lo.z + 0.5 * cell);
         let top = lo.y + PROBE_HEIGHT;
         let mut floor = Vec::with_capacity(width * depth);
         for j in 0..depth {
             for i in 0..width {
-                let (x, z) = (origin.0 + i as f32 * CELL, origin.1 + j as f32 * CELL);
+                let (x, z) = (origin.0 + i as f32 * cell, origin.1 + j as f32 * cell);
                 let ground = level.cast_ray(Vec3::new(x, top, z), -Vec3::Y, PROBE_HEIGHT + 1.0);
                 let cell = ground.filter(|g| g.normal.y >= 0.7).map(|g| g.point.y).filter(|&y| {
                     level.capsule_fits(Vec3::new(x, y + CLEARANCE, z), radius, (height - CLEARANCE).max(2.0 * radius))
@@ -52,19 +59,24 @@ impl NavGrid {
                 floor.push(cell);
             }
         }
-        Self { origin, width, depth, floor }
+        Self { cell, origin, width, depth, floor }
+    }
+
+    /// No walkable cell at all: every way is unknown.
+    pub fn empty() -> Self {
+        Self { cell: CELL, origin: (0.0, 0.0), width: 1, depth: 1, floor: vec![None] }
     }
 
     fn cell_of(&self, p: Vec3) -> Option<(usize, usize)> {
-        let i = ((p.x - self.origin.0) / CELL).round();
-        let j = ((p.z - self.origin.1) / CELL).round();
+        let i = ((p.x - self.origin.0) / self.cell).round();
+        let j = ((p.z - self.origin.1) / self.cell).round();
         (i >= 0.0 && j >= 0.0 && (i as usize) < self.width && (j as usize) < self.depth)
             .then_some((i as usize, j as usize))
     }
 
     fn centre(&self, (i, j): (usize, usize)) -> Vec3 {
         let y = self.floor[j * self.width + i].unwrap_or(0.0);
-        Vec3::new(self.origin.0 + i as f32 * CELL, y, self.origin.1 + j as f32 * CELL)
+        Vec3::new(self.origin.0 + i as f32 * self.cell, y, self.origin.1 + j as f32 * self.cell)
     }
 
     pub fn walkable(&self, p: Vec3) -> bool {
@@ -181,6 +193,23 @@ mod tests {
             through_gap |= at.z.abs() < 0.3 && (3.0..=4.5).contains(&at.x);
         }
         assert!(at.distance(goal) < 0.1 && through_gap, "ended at {at}");
+    }
+
+    #[test]
+    fn a_huge_level_gets_bigger_cells() {
+        let p = [
+            Vec3::new(-2000.0, 0.0, -2000.0),
+            Vec3::new(2000.0, 0.0, -2000.0),
+            Vec3::new(2000.0, 0.0, 2000.0),
+            Vec3::new(-2000.0, 0.0, 2000.0),
+        ];
+        let level = LevelCollision::from_triangles(&p, &[[0, 2, 1], [0, 3, 2]]).unwrap();
+        let grid = NavGrid::build(&level, 0.35, 1.5);
+        assert!(grid.floor.len() <= MAX_CELLS + 2 * 1000, "{} cells", grid.floor.len());
+        assert!(grid.cell > CELL);
+        let step = grid.next_step(Vec3::new(-100.0, 0.0, 0.0), Vec3::new(100.0, 0.0, 0.0)).unwrap();
+        assert!(step.x > -100.0, "still leads the way: {step}");
+        assert_eq!(NavGrid::empty().next_step(Vec3::ZERO, Vec3::X), None);
     }
 
     #[test]
