@@ -288,6 +288,7 @@ impl GameWindow {
             hint,
             message: self.messages.current().map(str::to_owned),
             gun: s.player.alive().then(|| self.gun_pose()),
+            hit: self.messages.hit(),
         }
     }
 

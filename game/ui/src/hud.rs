@@ -28,6 +28,8 @@ pub struct HudInfo {
     pub message: Option<String>,
     /// The gun in hand; None draws no gun (e.g. watching from a menu).
     pub gun: Option<crate::GunPose>,
+    /// 0..=1: a shot just hit a crawler (a marker round the crosshair, fading).
+    pub hit: f32,
 }
 
 impl Default for HudInfo {
@@ -49,6 +51,7 @@ impl Default for HudInfo {
             hint: None,
             message: None,
             gun: Some(crate::GunPose::default()),
+            hit: 0.0,
         }
     }
 }
@@ -74,6 +77,7 @@ pub fn show(ctx: &egui::Context, hud: &HudInfo) {
     }
     hurt_flash(&painter, screen, hud.hurt);
     crosshair(&painter, screen.center());
+    hit_marker(&painter, screen.center(), hud.hit);
     area("hud vitals", Align2::LEFT_BOTTOM, egui::vec2(MARGIN, -MARGIN)).show(ctx, |ui| {
         plate().show(ui, |ui| {
             ui.horizontal_top(|ui| {
@@ -207,6 +211,19 @@ fn crosshair(painter: &egui::Painter, centre: Pos2) {
         for dir in arms {
             painter.line_segment([centre + dir * GAP, centre + dir * (GAP + LENGTH)], Stroke::new(width, color));
         }
+    }
+}
+
+/// Four short diagonals round the crosshair: the shot landed.
+fn hit_marker(painter: &egui::Painter, centre: Pos2, hit: f32) {
+    let hit = hit.clamp(0.0, 1.0);
+    if hit <= 0.0 {
+        return;
+    }
+    let color = Color32::from_rgba_unmultiplied(255, 235, 200, (hit * 255.0) as u8);
+    for (dx, dy) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+        let dir = egui::vec2(dx, dy) * std::f32::consts::FRAC_1_SQRT_2;
+        painter.line_segment([centre + dir * 9.0, centre + dir * 17.0], Stroke::new(2.0, color));
     }
 }
 
