@@ -446,7 +446,7 @@ impl WindowApp for GameWindow {
     }
 
     fn ui(&mut self, ctx: &egui::Context) {
-        if self.menus.screen() != Screen::MainMenu {
+        if self.menus.in_game() {
             hud::show(ctx, &self.hud());
         }
         let status = self.status();

@@ -83,6 +83,16 @@ impl Menus {
 
     /// A menu is up: the game should release the mouse and, except in a paused or finished
     /// game, may stop its simulation.
+    /// Whether a game is under way behind the menus (its HUD belongs on screen): not on the
+    /// main menu, nor in Settings opened from it.
+    pub fn in_game(&self) -> bool {
+        match self.screen {
+            Screen::MainMenu => false,
+            Screen::Settings => self.settings_from != Screen::MainMenu,
+            _ => true,
+        }
+    }
+
     pub fn is_open(&self) -> bool {
         self.screen != Screen::Playing
     }

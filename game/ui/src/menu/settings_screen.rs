@@ -98,14 +98,20 @@ impl SettingsScreen {
             ui.spacing_mut().item_spacing.y = 8.0;
             // One fixed size for every tab, so the panel does not jump when the tab changes.
             let height = (ctx.content_rect().height() - 210.0).clamp(120.0, 420.0);
-            egui::ScrollArea::vertical().auto_shrink([false, false]).max_height(height).show(ui, |ui| {
-                ui.with_layout(egui::Layout::top_down(egui::Align::Min), |ui| match self.tab {
-                    Tab::Controls => controls(ui, config),
-                    Tab::Bindings => self.bindings(ui, config),
-                    Tab::Video => video(ui, config),
-                    Tab::Gi => {
-                        gi_panel::sliders(ui, &mut config.gi);
-                        ui.label(RichText::new("Changes show on the next frame.").weak());
+            // A region of exactly that size from the first frame: a scroll area left to size
+            // itself grows over its first frames, and the centred panel moves with it.
+            let size = egui::vec2(ui.available_width(), height);
+            ui.allocate_ui_with_layout(size, egui::Layout::top_down(egui::Align::Min), |ui| {
+                ui.set_min_size(size);
+                egui::ScrollArea::vertical().auto_shrink([false, false]).max_height(height).show(ui, |ui| {
+                    match self.tab {
+                        Tab::Controls => controls(ui, config),
+                        Tab::Bindings => self.bindings(ui, config),
+                        Tab::Video => video(ui, config),
+                        Tab::Gi => {
+                            gi_panel::sliders(ui, &mut config.gi);
+                            ui.label(RichText::new("Changes show on the next frame.").weak());
+                        }
                     }
                 });
             });

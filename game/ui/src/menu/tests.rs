@@ -342,3 +342,34 @@ fn a_warning_shows_until_dismissed() {
     assert!(!h.shows("config.toml: line 2: controls.fov_deg: 140 is out of range"));
     assert_eq!(h.menus.screen(), Screen::MainMenu);
 }
+
+#[test]
+fn a_game_is_under_way_except_on_the_main_menu_and_its_settings() {
+    let mut h = Harness::new();
+    assert!(!h.menus.in_game());
+    h.click("Settings");
+    assert!(!h.menus.in_game(), "settings from the main menu");
+    h.menus.playing();
+    assert!(h.menus.in_game());
+    h.menus.pause();
+    h.settle();
+    h.click("Settings");
+    assert!(h.menus.in_game(), "settings from the pause menu");
+}
+
+/// The settings panel keeps its place from its first drawn frame on (it used to grow, and
+/// move, over its first frames, so a click aimed at what was shown could miss).
+#[test]
+fn the_settings_panel_does_not_move_once_shown() {
+    let mut h = Harness::new();
+    h.click_at(h.rect("Settings").center(), egui::PointerButton::Primary);
+    let mut places = Vec::new();
+    for _ in 0..15 {
+        h.pass(Vec::new());
+        if h.shows("Back") {
+            places.push(h.rect("Back"));
+        }
+    }
+    assert!(places.len() >= 12, "shown from the first frames: {}", places.len());
+    assert!(places.windows(2).all(|w| w[0] == w[1]), "{places:?}");
+}
