@@ -13,7 +13,7 @@ use engine::input::{Input, KeyCode};
 use engine::renderer::Renderer;
 use engine::scene::Level;
 use engine::window::WindowApp;
-use game_ui::{gi_panel, hud, overlay, Config, FrameRate, HudInfo, MenuAction, Menus, OverlayInfo, Screen};
+use game_ui::{gi_panel, hud, overlay, Config, FrameRate, HudInfo, MenuAction, Menus, OverlayInfo};
 use plugin_gi::GiHandle;
 
 use crate::command_sampler::CommandSampler;

@@ -2,6 +2,7 @@
 
 use super::*;
 use game_ui::egui_harness::{click, find, input, texts};
+use game_ui::Screen;
 use plugin_gi::GiSettings;
 
 fn app() -> GameWindow {
