@@ -72,7 +72,7 @@ impl ActorMeshes {
         }
         let lamp = &state.lamp;
         if !lamp.attached {
-            let position = if lamp.resting { lamp.position } else { prev.lamp.position.lerp(lamp.position, t) };
+            let position = lamp.drawn_position(&prev.lamp, t);
             let aim = crate::sim::player::aim(lamp.yaw, lamp.pitch);
             // The cylinder's axis (+Y) along the beam, the whole lamp just behind the point the
             // light leaves from: it must not stand in its own beam (the lamp's view, which casts

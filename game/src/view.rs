@@ -61,8 +61,7 @@ impl WorldView {
         view.headlamp.profile.power = self.lamp_power * lamp.brightness();
         view.headlamp.attached = lamp.attached;
         if !lamp.attached {
-            view.headlamp.position =
-                if lamp.resting { lamp.position } else { prev.lamp.position.lerp(lamp.position, t) };
+            view.headlamp.position = lamp.drawn_position(&prev.lamp, t);
             view.headlamp.rotation = yaw_pitch_rotation(radians(lamp.yaw as f32), radians(lamp.pitch as f32));
         }
         let flash = cur.weapon.flash as f32 / weapon::FLASH_TICKS as f32;

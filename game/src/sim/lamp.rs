@@ -73,6 +73,16 @@ impl Lamp {
         }
     }
 
+    /// Where to draw a detached lamp between its state one tick ago (`prev`, t = 0) and now
+    /// (t = 1): flying, blended; lying still, exactly where it lies.
+    pub fn drawn_position(&self, prev: &Lamp, t: f32) -> Vec3 {
+        if self.resting {
+            self.position
+        } else {
+            prev.position.lerp(self.position, t)
+        }
+    }
+
     pub fn within_reach(&self, player: &Player) -> bool {
         !self.attached && self.position.distance(player.eye()) <= REACH
     }
