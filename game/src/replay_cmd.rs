@@ -137,21 +137,20 @@ pub fn script(args: &ScriptArgs) -> anyhow::Result<()> {
     let gi = crate::cli::gi_settings(&args.settings, args.gi).map_err(|e| anyhow!("--set {e}"))?;
     let (commands, steps) = crate::script::read_steps(&args.script).map_err(|e| anyhow!(e))?;
     let level = engine::scene::load_level(&args.level)?;
-    if args.trace {
-        let mut sim =
-            Simulation::new(&level, crate::sim::level_world(&level)?, FixedClock::DEFAULT_TICK_RATE, args.seed);
-        let mut done = 0;
-        let mut stdout = std::io::stdout().lock();
-        for (line, end) in steps {
-            commands[done..end].iter().for_each(|c| sim.step(c));
-            done = end;
-            // A reader that stops early (`| head`) is not an error worth a panic.
-            if writeln!(stdout, "{}", crate::script_trace::describe(line, &sim.state)).is_err() {
-                break;
+    // Each line's step ends after some tick: with --trace, the world is shown there.
+    let mut steps = steps.into_iter().peekable();
+    let mut stdout = std::io::stdout().lock();
+    let mut tracing = args.trace;
+    let recorder =
+        record_commands_seen(&level, &args.level, &commands, args.seed, &gi, args.out.clone(), |ticks, state| {
+            while let Some((line, _)) = steps.next_if(|&(_, end)| end == ticks) {
+                // A reader that stops early (`| head`) is not an error worth a panic.
+                if tracing && writeln!(stdout, "{}", crate::script_trace::describe(line, state)).is_err() {
+                    tracing = false;
+                }
             }
-        }
-    }
-    let recorder = record_commands(&level, &args.level, &commands, args.seed, &gi, args.out.clone())?;
+        })?;
+    drop(stdout);
     recorder.save()?;
     println!(
         "wrote {} ({} ticks, final hash {:016x})",
@@ -171,13 +170,27 @@ pub fn record_commands(
     gi: &plugin_gi::GiSettings,
     out: PathBuf,
 ) -> anyhow::Result<Recorder> {
+    record_commands_seen(level, level_path, commands, seed, gi, out, |_, _| {})
+}
+
+/// [`record_commands`], showing `seen` the world after every tick (with the ticks run so far).
+fn record_commands_seen(
+    level: &engine::scene::Level,
+    level_path: &Path,
+    commands: &[TickCommand],
+    seed: u64,
+    gi: &plugin_gi::GiSettings,
+    out: PathBuf,
+    mut seen: impl FnMut(usize, &WorldState),
+) -> anyhow::Result<Recorder> {
     let tick_rate = FixedClock::DEFAULT_TICK_RATE;
     let header = recording::header(level, level_path, tick_rate, seed, gi);
     let mut sim = Simulation::new(level, crate::sim::level_world(level)?, tick_rate, seed);
     let mut recorder = Recorder::new(header, out);
-    for cmd in commands {
+    for (i, cmd) in commands.iter().enumerate() {
         sim.step(cmd);
         recorder.push(cmd, &sim.state);
+        seen(i + 1, &sim.state);
     }
     Ok(recorder)
 }
