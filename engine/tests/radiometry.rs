@@ -78,6 +78,15 @@ fn centre_channel(img: &image::Rgba32FImage, channel: usize) -> f32 {
     sum / 4.0
 }
 
+/// The cosine between the view axis and the ray through the centre of pixel (x, y).
+fn pixel_cos(x: u32, y: u32) -> f32 {
+    let tan_half = (FOV_Y * 0.5).tan();
+    let aspect = SIZE.0 as f32 / SIZE.1 as f32;
+    let ndc_x = (x as f32 + 0.5) / SIZE.0 as f32 * 2.0 - 1.0;
+    let ndc_y = 1.0 - (y as f32 + 0.5) / SIZE.1 as f32 * 2.0;
+    -Vec3::new(ndc_x * tan_half * aspect, ndc_y * tan_half, -1.0).normalize().z
+}
+
 fn assert_close(got: f32, want: f32, what: &str) {
     let rel = (got - want).abs() / want;
     assert!(rel <= 0.01, "{what}: got {got}, expected {want} (relative error {:.3}%)", rel * 100.0);
@@ -98,14 +107,9 @@ fn facing_plane_radiance_is_rho_over_pi_d_squared() {
 fn radiance_falls_off_as_cos_cubed_across_a_facing_plane() {
     let (d, rho) = (3.0, 0.6);
     let img = render_direct(&plane(Vec3::new(0.0, 0.0, -d), Vec3::Z, rho), uniform_lamp(1.0));
-    let tan_half = (FOV_Y * 0.5).tan();
-    let aspect = SIZE.0 as f32 / SIZE.1 as f32;
     for px in [4u32, 20, 70, 90] {
         let y = SIZE.1 / 2;
-        let ndc_x = (px as f32 + 0.5) / SIZE.0 as f32 * 2.0 - 1.0;
-        let ndc_y = 1.0 - (y as f32 + 0.5) / SIZE.1 as f32 * 2.0;
-        let dir = Vec3::new(ndc_x * tan_half * aspect, ndc_y * tan_half, -1.0).normalize();
-        let cos = -dir.z;
+        let cos = pixel_cos(px, y);
         // n·l = cos and d = d0/cos, so L = ρ cos³ / (π d0²).
         let want = rho / (PI * d * d) * cos.powi(3);
         assert_close(img.get_pixel(px, y)[0], want, &format!("pixel x={px}"));
@@ -181,13 +185,9 @@ fn the_camera_flash_falls_off_as_cos_cubed_and_zero_changes_nothing() {
     lamp.on = false;
     let scene = plane(Vec3::new(0.0, 0.0, -d), Vec3::Z, rho);
     let img = render_direct_with_flash(&scene, lamp.clone(), [intensity; 3]);
-    let tan_half = (FOV_Y * 0.5).tan();
-    let aspect = SIZE.0 as f32 / SIZE.1 as f32;
     for px in [4u32, 20, 70, 90] {
         let y = SIZE.1 / 2;
-        let ndc_x = (px as f32 + 0.5) / SIZE.0 as f32 * 2.0 - 1.0;
-        let ndc_y = 1.0 - (y as f32 + 0.5) / SIZE.1 as f32 * 2.0;
-        let cos = Vec3::new(ndc_x * tan_half * aspect, ndc_y * tan_half, -1.0).normalize().z.abs();
+        let cos = pixel_cos(px, y);
         let want = rho * intensity / (PI * d * d) * cos.powi(3);
         assert_close(img.get_pixel(px, y)[0], want, &format!("pixel x={px}"));
     }
