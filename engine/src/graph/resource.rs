@@ -4,6 +4,10 @@
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SizeRule {
     ViewScaled(f32),
+    /// The view scaled by the factor, but at least this many pixels high (and never larger than
+    /// the view), keeping the aspect: for targets that must sample the scene finely enough
+    /// whatever the output size.
+    ViewScaledAtLeast(f32, u32),
     Fixed(u32, u32),
 }
 
@@ -13,6 +17,10 @@ impl SizeRule {
         match *self {
             SizeRule::ViewScaled(s) => {
                 (((view.0 as f32 * s).round() as u32).max(1), ((view.1 as f32 * s).round() as u32).max(1))
+            }
+            SizeRule::ViewScaledAtLeast(s, min_height) => {
+                let floor = (min_height as f32 / view.1.max(1) as f32).min(1.0);
+                SizeRule::ViewScaled(s.max(floor)).resolve(view)
             }
             SizeRule::Fixed(w, h) => (w.max(1), h.max(1)),
         }
