@@ -1,23 +1,24 @@
 //! Deferred rendered radiosity from first-person perspective: the global-illumination plugin.
 //!
-//! Per frame: the lamp-view G-buffer becomes reflected flux per texel (Φ = ρ·I(ω)·Ω_texel);
-//! a mip chain merges similar texels; a precomputed distribution table picks the quadtree
-//! slots that become reflection lights, built on the GPU into an instance buffer with indirect
-//! draw arguments; instanced light volumes shade the camera G-buffer into an irradiance target,
-//! which is upsampled, turned into radiance and added to the frame. It depends on the
-//! engine's public API only and registers everything in [`GiPlugin::build`].
+//! Per frame: the lamp-view G-buffer becomes reflected flux per texel (Φ = ρ·I(ω)·Ω_texel),
+//! merged up a quadtree with the article's filter into a pyramid of reflection lights of every
+//! size; each 8×8 tile of a reduced-resolution irradiance target takes its own cut through the
+//! pyramid (fine lights near it, coarse ones far away) and gathers their irradiance, which is
+//! upsampled with geometry-aware weights, turned into radiance and added to the frame. It
+//! depends on the engine's public API only and registers everything in [`GiPlugin::build`].
 
 mod bindings;
-pub mod distribution_table;
+mod gather;
 mod gpu_types;
-mod light_builder;
 pub mod metrics;
 mod passes;
+mod pyramid;
 pub mod quadtree;
 pub mod readback;
 mod settings;
 mod shared;
 
+use std::cell::RefCell;
 use std::rc::Rc;
 
 use engine::passes::OutputView;
@@ -25,7 +26,7 @@ use engine::plugin::{Plugin, PluginContext};
 
 pub use gpu_types::{names, ReflectionLight};
 pub use passes::{INCLUDES as SHADER_INCLUDES, SHADERS};
-pub use settings::{FieldInfo, GiSettings};
+pub use settings::{FieldInfo, GiSettings, RETIRED};
 pub use shared::{GiHandle, GiStats};
 
 pub struct GiPlugin {
@@ -56,10 +57,12 @@ impl Plugin for GiPlugin {
         let gpu = Rc::new(shared::GpuShared {
             params: bindings::uniform_buffer(device, "gi params", std::mem::size_of::<gpu_types::GiParams>() as u64),
         });
-        ctx.add_pass(passes::LightsPass::new(device, globals, self.handle.clone(), gpu.clone()));
-        ctx.add_pass(passes::ShadePass::new(ctx.gpu, globals, self.handle.clone(), gpu.clone()));
-        ctx.add_pass(passes::BouncePass::new(ctx.gpu, globals, self.handle.clone()));
-        ctx.add_pass(passes::CompositePass::new(device, globals, self.handle.clone(), gpu.clone()));
+        let pyramid = Rc::new(RefCell::new(pyramid::FluxPyramid::new(device, globals, gpu.params.clone())));
+        let handle = &self.handle;
+        ctx.add_pass(passes::FluxPass::new(handle.clone(), gpu.clone(), pyramid.clone()));
+        ctx.add_pass(passes::GatherPass::new(device, globals, handle.clone(), gpu.clone(), pyramid));
+        ctx.add_pass(passes::BouncePass::new(device, globals, handle.clone()));
+        ctx.add_pass(passes::CompositePass::new(device, globals, handle.clone(), gpu.clone()));
         ctx.add_pass(passes::LightsViewPass::new(device, globals));
         ctx.add_pass(passes::ReferencePass::new(device, globals, gpu));
         ctx.add_view("indirect", names::INDIRECT, OutputView::Radiance);
@@ -70,11 +73,6 @@ impl Plugin for GiPlugin {
 
     fn stats(&self) -> Vec<(String, f64)> {
         let s = self.handle.stats();
-        vec![
-            ("gi_slots".into(), s.slots as f64),
-            ("gi_light_capacity".into(), s.light_capacity as f64),
-            ("gi_dispatches".into(), s.dispatches as f64),
-            ("gi_draws".into(), s.draws as f64),
-        ]
+        vec![("gi_dispatches".into(), s.dispatches as f64), ("gi_draws".into(), s.draws as f64)]
     }
 }

@@ -1,4 +1,5 @@
-//! Reading the GI's GPU results back, for tests and `bench` (blocks until the GPU is idle).
+//! Reading the GI's GPU results back, for tests, `bench` and the overlay (blocks until the GPU
+//! is idle).
 
 use engine::gpu::Gpu;
 use engine::headless::{read_buffer, read_texture};
@@ -6,13 +7,38 @@ use engine::renderer::Renderer;
 
 use crate::gpu_types::{names, ReflectionLight};
 
-/// The reflection lights built in the last frame.
+/// The reflection lights that lit the tile at the centre of the view in the last frame: its
+/// cut through the pyramid.
 pub fn lights(gpu: &Gpu, renderer: &Renderer) -> Option<Vec<ReflectionLight>> {
-    let args = read_buffer(gpu, renderer.graph().physical_buffer(names::DRAW_ARGS)?);
-    let count = u32::from_le_bytes(args[4..8].try_into().ok()?) as usize;
+    let stats = read_buffer(gpu, renderer.graph().physical_buffer(names::STATS)?);
+    let count = u32::from_le_bytes(stats[4..8].try_into().ok()?) as usize;
     let bytes = read_buffer(gpu, renderer.graph().physical_buffer(names::LIGHTS)?);
     let all: &[ReflectionLight] = bytemuck::cast_slice(&bytes);
     Some(all[..count.min(all.len())].to_vec())
+}
+
+/// What the gather did in the last frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CutStats {
+    /// Tiles of 8×8 receivers that saw geometry.
+    pub tiles: u32,
+    /// Reflection lights summed over those tiles (each tile its own cut through the pyramid).
+    pub lights: u64,
+    /// Tiles whose cut filled up (lights taken coarser than `split_ratio` asked).
+    pub full_tiles: u32,
+}
+
+impl CutStats {
+    /// Reflection lights per tile, on average.
+    pub fn lights_per_tile(&self) -> f64 {
+        self.lights as f64 / self.tiles.max(1) as f64
+    }
+}
+
+pub fn cut_stats(gpu: &Gpu, renderer: &Renderer) -> Option<CutStats> {
+    let stats = read_buffer(gpu, renderer.graph().physical_buffer(names::STATS)?);
+    let word = |i: usize| u32::from_le_bytes(stats[4 * i..4 * i + 4].try_into().expect("4 bytes"));
+    Some(CutStats { lights: word(4) as u64, tiles: word(5), full_tiles: word(6) })
 }
 
 /// Σ Φ over the last frame's flux G-buffer, per channel (W), summed in f64.

@@ -2,6 +2,7 @@
 //! Serde-able for config files, settable by name for `--set gi.NAME=VALUE`, and described by
 //! [`GiSettings::FIELDS`] so a UI can show sliders without knowing the struct.
 
+use engine::graph::SizeRule;
 use serde::{Deserialize, Serialize};
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -9,18 +10,13 @@ use serde::{Deserialize, Serialize};
 pub struct GiSettings {
     /// Indirect light on or off (`--gi off`); off leaves the direct-lit renderer.
     pub enabled: bool,
-    /// Target number of reflection lights per bounce.
-    pub light_budget: u32,
     /// Children merge only if their normals are within this angle (degrees) of their mean.
     pub merge_normal_deg: f32,
     /// …and their positions within this fraction of their distance from the lamp.
     pub merge_distance: f32,
-    /// A reflection light's volume ends where its irradiance falls below this fraction of
-    /// E_ref = Φ_total/(π d̄²), the irradiance all the reflected flux gives at the mean distance
-    /// from the lamp. Relative, so it means the same in any scene and at any light count.
-    pub cutoff: f32,
-    /// Minimum distance (m) in the 1/d² of a reflection light, against the point-light singularity.
-    pub d_min: f32,
+    /// A reflection light is split into its four children while its size exceeds this
+    /// fraction of its distance to the receivers it lights: smaller is more exact and slower.
+    pub split_ratio: f32,
     /// Light bounces: 1 is the article's one bounce; 2–3 feed the indirect light back as flux.
     pub bounces: u32,
     /// Size of the indirect-light target relative to the view.
@@ -31,13 +27,11 @@ impl Default for GiSettings {
     fn default() -> Self {
         Self {
             enabled: true,
-            light_budget: 1024,
             merge_normal_deg: 25.0,
             merge_distance: 0.15,
-            cutoff: 1e-3,
-            d_min: 0.1,
+            split_ratio: 0.5,
             bounces: 1,
-            resolution_scale: 0.5,
+            resolution_scale: 0.25,
         }
     }
 }
@@ -56,14 +50,16 @@ const fn field(name: &'static str, min: f64, max: f64, integer: bool, help: &'st
     FieldInfo { name, min, max, integer, help }
 }
 
+/// Settings of the light-volume GI (before the pyramid gather) that older replays and config
+/// files still name: accepted and ignored.
+pub const RETIRED: &[&str] = &["light_budget", "cutoff", "d_min"];
+
 impl GiSettings {
     /// The numeric fields, their valid ranges and meaning (`enabled` is the on/off switch).
     pub const FIELDS: &'static [FieldInfo] = &[
-        field("light_budget", 16.0, 65536.0, true, "target number of reflection lights per bounce"),
         field("merge_normal_deg", 0.0, 90.0, false, "max normal deviation (degrees) for texels to merge"),
         field("merge_distance", 0.0, 2.0, false, "max position deviation, as a fraction of distance to the lamp"),
-        field("cutoff", 1e-7, 1.0, false, "where a light's volume ends, relative to the scene's mean irradiance"),
-        field("d_min", 0.001, 2.0, false, "minimum distance (m) in a reflection light's 1/d²"),
+        field("split_ratio", 0.05, 4.0, false, "split a light while its size exceeds this fraction of its distance"),
         field("bounces", 1.0, 3.0, true, "number of light bounces"),
         field("resolution_scale", 0.125, 1.0, false, "indirect target size relative to the view"),
     ];
@@ -71,11 +67,9 @@ impl GiSettings {
     /// The value of a numeric field by name.
     pub fn get(&self, name: &str) -> Option<f64> {
         Some(match name {
-            "light_budget" => self.light_budget as f64,
             "merge_normal_deg" => self.merge_normal_deg as f64,
             "merge_distance" => self.merge_distance as f64,
-            "cutoff" => self.cutoff as f64,
-            "d_min" => self.d_min as f64,
+            "split_ratio" => self.split_ratio as f64,
             "bounces" => self.bounces as f64,
             "resolution_scale" => self.resolution_scale as f64,
             _ => return None,
@@ -90,6 +84,10 @@ impl GiSettings {
                 "false" | "off" | "0" => false,
                 _ => return Err(format!("gi.enabled: '{value}' is not on/off/true/false")),
             };
+            return Ok(());
+        }
+        if RETIRED.contains(&name) {
+            log::info!("gi.{name} no longer exists (the GI gathers from a light pyramid); ignored");
             return Ok(());
         }
         let Some(info) = Self::FIELDS.iter().find(|f| f.name == name) else {
@@ -110,16 +108,30 @@ impl GiSettings {
         let Some(info) = Self::FIELDS.iter().find(|f| f.name == name) else { return };
         let v = v.clamp(info.min, info.max);
         match name {
-            "light_budget" => self.light_budget = v.round() as u32,
             "merge_normal_deg" => self.merge_normal_deg = v as f32,
             "merge_distance" => self.merge_distance = v as f32,
-            "cutoff" => self.cutoff = v as f32,
-            "d_min" => self.d_min = v as f32,
+            "split_ratio" => self.split_ratio = v as f32,
             "bounces" => self.bounces = v.round() as u32,
             "resolution_scale" => self.resolution_scale = v as f32,
             _ => {}
         }
     }
+
+    /// The indirect target's size rule: `resolution_scale` of the view, but at least
+    /// [`MIN_INDIRECT_HEIGHT`] pixels high, as the light's variation across a room needs that
+    /// many receivers whatever the output size.
+    pub fn indirect_size(&self) -> SizeRule {
+        SizeRule::ViewScaledAtLeast(self.resolution_scale, MIN_INDIRECT_HEIGHT)
+    }
+}
+
+/// The fewest rows of receivers the indirect target has (fewer only when the view has fewer).
+pub const MIN_INDIRECT_HEIGHT: u32 = 90;
+
+/// The pyramid level below which lights are not split: the footprint of one receiver of the
+/// indirect target (finer senders would be finer than the receivers sampling them).
+pub fn min_level(view_height: u32, indirect_height: u32) -> u32 {
+    (view_height as f32 / indirect_height.max(1) as f32).log2().floor().clamp(0.0, 3.0) as u32
 }
 
 #[cfg(test)]
@@ -129,14 +141,23 @@ mod tests {
     #[test]
     fn set_by_name_validates() {
         let mut s = GiSettings::default();
-        s.set("light_budget", "256").unwrap();
-        assert_eq!(s.light_budget, 256);
+        s.set("split_ratio", "0.25").unwrap();
+        assert_eq!(s.split_ratio, 0.25);
         s.set("enabled", "off").unwrap();
         assert!(!s.enabled);
-        assert!(s.set("light_budget", "2.5").unwrap_err().contains("whole number"));
+        assert!(s.set("bounces", "2.5").unwrap_err().contains("whole number"));
         assert!(s.set("bounces", "4").unwrap_err().contains("out of range"));
-        assert!(s.set("d_min", "abc").unwrap_err().contains("not a number"));
+        assert!(s.set("split_ratio", "abc").unwrap_err().contains("not a number"));
         assert!(s.set("nope", "1").unwrap_err().contains("unknown setting 'gi.nope'"));
+    }
+
+    #[test]
+    fn retired_settings_of_old_replays_and_configs_are_ignored() {
+        let mut s = GiSettings::default();
+        for name in RETIRED {
+            s.set(name, "7").unwrap();
+        }
+        assert_eq!(s, GiSettings::default());
     }
 
     #[test]
@@ -149,5 +170,20 @@ mod tests {
         let text = toml::to_string(&s).unwrap();
         assert_eq!(toml::from_str::<GiSettings>(&text).unwrap(), s);
         assert!(toml::from_str::<GiSettings>("lite_budget = 3").is_err());
+    }
+
+    #[test]
+    fn receivers_footprint_sets_the_finest_split() {
+        assert_eq!((min_level(360, 360), min_level(360, 180), min_level(360, 90), min_level(720, 90)), (0, 1, 2, 3));
+        assert_eq!(min_level(100, 90), 0);
+    }
+
+    #[test]
+    fn the_indirect_target_keeps_enough_receivers() {
+        let s = GiSettings::default();
+        assert_eq!(s.indirect_size().resolve((1280, 720)), (320, 180));
+        assert_eq!(s.indirect_size().resolve((640, 360)), (160, 90));
+        assert_eq!(s.indirect_size().resolve((160, 120)), (120, 90));
+        assert_eq!(s.indirect_size().resolve((64, 48)), (64, 48));
     }
 }

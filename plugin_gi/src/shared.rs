@@ -8,17 +8,13 @@ use engine::wgpu;
 use crate::gpu_types::GiParams;
 use crate::settings::GiSettings;
 
-/// Per-frame figures of the GI. Draws and dispatches depend on the resolution and the number
-/// of bounces, never on the light count.
+/// Per-frame figures of the GI. Draws and dispatches depend on the number of bounces, never on
+/// the light count, the resolution or the scene.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct GiStats {
-    /// Entries of the distribution table: the lights before refinement.
-    pub slots: u32,
-    /// Size of the instance buffer.
-    pub light_capacity: u32,
     /// Compute dispatches the GI issued last frame.
     pub dispatches: u32,
-    /// Draw calls the GI issued last frame (instanced / indirect).
+    /// Draw calls the GI issued last frame.
     pub draws: u32,
 }
 

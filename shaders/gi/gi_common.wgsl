@@ -1,33 +1,33 @@
-// Shared declarations of the GI plugin's passes: the quadtree node of the reduced flux
-// G-buffer, the reflection light, and the per-frame parameters.
+// Shared declarations of the GI plugin's passes: the node of the reduced flux G-buffer (the
+// pyramid of reflection lights), the per-frame parameters, the merge filter and the
+// patch-to-point transport every pass evaluates.
 
-// One texel of the flux G-buffer's mip chain. A coherent node stands for all texels below it
-// as one Lambertian emitter; an incoherent one keeps its most significant child's position
-// and normal but always the full flux sum, so energy is never dropped.
+// One node of the flux pyramid: a Lambertian emitter standing for every texel below it.
 struct Node {
+    // Flux-weighted centroid of the texels below (m).
     position: vec3f,
-    // Flux-weighted distance from the lamp (m).
-    dist: f32,
+    // Radius about `position` that holds every texel patch below (m): how big the light is.
+    extent: f32,
+    // Flux-weighted mean normal, normalised.
     normal: vec3f,
-    // 1 when every texel below merged under the thresholds.
+    // 1 when every texel below merged under the thresholds (one plane, no depth step).
     merged: u32,
-    // Reflected flux Φ (W), summed over the texels below.
+    // Reflected flux Φ (W), summed over the texels below: never dropped, only grouped.
     flux: vec3f,
-    // Σ luminance(Φ): the weight of position and normal averages.
-    weight: f32,
+    // Surface area of the texels below (m²).
+    area: f32,
 };
 
-// A reflection light: I_r(ω) = Φ/π · max(0, n_r·ω).
+// A reflection light as the `lights` view and tests read it back: one node of a tile's cut.
 struct ReflectionLight {
     position: vec3f,
-    // Distance along the normal at which the irradiance falls to the cutoff; the light's
-    // volume encloses the region where it is above.
-    radius: f32,
+    area: f32,
     normal: vec3f,
-    // The mip level it came from (0 = one texel).
+    // The pyramid level it came from (0 = one texel).
     level: u32,
     flux: vec3f,
-    pad: f32,
+    // 1 when it faces away from every receiver of its tile (so it was not evaluated).
+    faces_away: f32,
 };
 
 struct GiParams {
@@ -37,25 +37,98 @@ struct GiParams {
     // tan of the lamp frustum's half angles (x, y), the lamp's power P (for the flux view).
     lamp_tan: vec2f,
     lamp_power: f32,
-    // cos(merge normal threshold), merge distance fraction, cutoff (W/m²), d_min (m).
+    // cos(merge normal threshold), merge distance fraction.
     cos_merge: f32,
     merge_distance: f32,
-    cutoff: f32,
-    d_min: f32,
+    // A light is split while its extent exceeds this fraction of its distance to the receivers.
+    split_ratio: f32,
+    // Lights are never split below this pyramid level (a receiver's footprint).
+    min_level: u32,
     // 0: flux from the lamp, Φ = ρ·I·Ω; 1: flux from the previous bounce, Φ = ρ·E·A.
     source: u32,
 };
+
+const PYRAMID_LEVELS: u32 = 7u;
+
+// Per level of the pyramid: offset into the node buffer, width, height.
+struct Levels {
+    levels: array<vec4u, 8>,
+};
+
+// Texel areas are Ω·d²/cos θ; past this cosine (grazing) the patch is taken as this wide. It
+// only shapes the near field of one texel, never its flux, and shrinks with the texel.
+const MIN_AREA_COS: f32 = 0.01;
+
+// Solid angle of texel t of a `size` lamp view seen from the lamp: the texel's area in the
+// tangent plane at unit distance, times cos³ of its angle from the axis.
+fn texel_solid_angle(t: vec2u, size: vec2u, lamp_tan: vec2f) -> f32 {
+    let s = vec2f(size);
+    let ndc = vec2f((f32(t.x) + 0.5) / s.x * 2.0 - 1.0, 1.0 - (f32(t.y) + 0.5) / s.y * 2.0);
+    let tan_xy = ndc * lamp_tan;
+    let area = 4.0 * lamp_tan.x * lamp_tan.y / (s.x * s.y);
+    let r2 = 1.0 + dot(tan_xy, tan_xy);
+    return area / (r2 * sqrt(r2));
+}
+
+// The surface area a texel of solid angle Ω covers at x (normal n) seen from the lamp.
+fn texel_area(omega: f32, x: vec3f, n: vec3f, lamp: vec3f) -> f32 {
+    let to_lamp = lamp - x;
+    let d2 = dot(to_lamp, to_lamp);
+    let cos_theta = max(dot(n, to_lamp * inverseSqrt(max(d2, 1e-20))), MIN_AREA_COS);
+    return omega * d2 / cos_theta;
+}
 
 fn luminance(c: vec3f) -> f32 {
     return dot(c, vec3f(0.2126, 0.7152, 0.0722));
 }
 
-// Irradiance at x (normal n_x) from a Lambertian emitter at p (normal n_r) of flux Φ:
-// E = Φ/π · max(0, n_r·ω) · max(0, n_x·(−ω)) / max(d², d_min²), ω from the light to x.
-fn reflection_irradiance(flux: vec3f, p: vec3f, n_r: vec3f, x: vec3f, n_x: vec3f, d_min: f32) -> vec3f {
+// Irradiance at x (normal n_x) from a Lambertian patch at p (normal n_r, area A) of flux Φ:
+// E = Φ/π · max(0, n_r·ω) · max(0, n_x·(−ω)) / (d² + A/π), ω from the patch to x. Far away it is
+// the point light's Φ/π·cos·cos/d²; close by it is the disc's form factor, which stays finite,
+// so nothing has to be clamped.
+fn patch_irradiance(flux: vec3f, area: f32, p: vec3f, n_r: vec3f, x: vec3f, n_x: vec3f) -> vec3f {
     let v = x - p;
     let d2 = dot(v, v);
-    let w = v * inverseSqrt(max(d2, 1e-12));
-    let g = max(0.0, dot(n_r, w)) * max(0.0, dot(n_x, -w)) / max(d2, d_min * d_min);
+    let w = v * inverseSqrt(max(d2, 1e-20));
+    let g = max(0.0, dot(n_r, w)) * max(0.0, dot(n_x, -w)) / (d2 + area / PI + 1e-20);
     return flux * (g / PI);
+}
+
+// The merge filter: one node from four children (those without flux count for nothing).
+// Flux and area sum, position and normal are flux-weighted; the node is coherent when every
+// child with flux is and their normals and positions agree within the thresholds. Written out
+// for four named children: arrays of structs cost dearly on a CPU device.
+fn merge4(c0: Node, c1: Node, c2: Node, c3: Node, lamp: vec3f, cos_merge: f32, merge_distance: f32) -> Node {
+    let w = vec4f(luminance(c0.flux), luminance(c1.flux), luminance(c2.flux), luminance(c3.flux));
+    var node: Node;
+    node.flux = c0.flux + c1.flux + c2.flux + c3.flux;
+    let weight = w.x + w.y + w.z + w.w;
+    node.merged = 1u;
+    if weight <= 0.0 {
+        node.flux = vec3f(0.0);
+        return node;
+    }
+    let has = w > vec4f(0.0);
+    node.area = select(0.0, c0.area, has.x) + select(0.0, c1.area, has.y) + select(0.0, c2.area, has.z)
+        + select(0.0, c3.area, has.w);
+    node.position = (c0.position * w.x + c1.position * w.y + c2.position * w.z + c3.position * w.w) / weight;
+    let n = c0.normal * w.x + c1.normal * w.y + c2.normal * w.z + c3.normal * w.w;
+    node.normal = normalize(n + vec3f(0.0, 0.0, 1e-12));
+    let limit = merge_distance * length(node.position - lamp);
+    node.extent = max(max(child_reach(c0, has.x, node), child_reach(c1, has.y, node)),
+        max(child_reach(c2, has.z, node), child_reach(c3, has.w, node)));
+    let similar = child_agrees(c0, has.x, node, cos_merge, limit) && child_agrees(c1, has.y, node, cos_merge, limit)
+        && child_agrees(c2, has.z, node, cos_merge, limit) && child_agrees(c3, has.w, node, cos_merge, limit);
+    node.merged = select(0u, 1u, similar);
+    return node;
+}
+
+// How far from the node's centre a child's patches reach.
+fn child_reach(c: Node, has: bool, node: Node) -> f32 {
+    return select(0.0, length(c.position - node.position) + c.extent, has);
+}
+
+fn child_agrees(c: Node, has: bool, node: Node, cos_merge: f32, limit: f32) -> bool {
+    return !has || (c.merged == 1u && dot(c.normal, node.normal) >= cos_merge
+        && length(c.position - node.position) <= limit);
 }

@@ -1,12 +1,16 @@
-// GI brute-force reference: every texel of the full-resolution flux G-buffer is a reflection
-// light, with no merging and no cutoff; the indirect radiance ρ/π · E of each camera pixel is
-// summed over all of them. O(pixels × texels): for tests and `bench` at small sizes. The
-// flux is flux.wgsl's, so it holds the same sources: the lamp and, attached, the camera flash.
+// GI reference: the exact one bounce of the lamp's light. Every texel of the full-resolution
+// flux G-buffer is a sender, with no merging, no cutoff and no clamp: each is the small
+// surface patch it is (area A = Ω·d²/cos θ seen from the lamp), whose patch-to-point form
+// factor stays finite next to it, E = Φ/π · cos · cos / (d² + A/π). As the lamp view's
+// resolution rises the patches shrink and the sum converges to the integral. The indirect
+// radiance ρ/π · E of each camera pixel is summed over all of them: O(pixels × texels), for
+// tests and `bench` at small sizes. The flux is pyramid.wgsl's, so it holds the same sources:
+// the lamp and, attached, the camera flash.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
 @group(1) @binding(0) var<uniform> params: GiParams;
-// The lights: flux, position and normal of each lamp-view texel.
+// The senders: flux, position and normal of each lamp-view texel.
 @group(1) @binding(1) var light_flux: texture_2d<f32>;
 @group(1) @binding(2) var light_position: texture_2d<f32>;
 @group(1) @binding(3) var light_normal: texture_2d<f32>;
@@ -16,17 +20,17 @@
 @group(1) @binding(6) var gbuffer_position: texture_2d<f32>;
 @group(1) @binding(7) var reference_out: texture_storage_2d<rgba32float, write>;
 
-struct Emitter {
+struct Sender {
     position: vec3f,
-    lit: f32,
+    area: f32,
     normal: vec3f,
-    pad: f32,
+    lit: f32,
     flux: vec3f,
-    pad2: f32,
+    pad: f32,
 };
 
 const TILE: u32 = 64u;
-var<workgroup> tile: array<Emitter, 64>;
+var<workgroup> tile: array<Sender, 64>;
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
@@ -43,23 +47,25 @@ fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_inde
     let count = params.flux_size.x * params.flux_size.y;
     for (var start = 0u; start < count; start += TILE) {
         workgroupBarrier();
-        var emitter: Emitter;
+        var sender: Sender;
         let k = start + local;
         if k < count {
-            let t = vec2i(vec2u(k % params.flux_size.x, k / params.flux_size.x));
-            emitter.flux = textureLoad(light_flux, t, 0).rgb;
-            emitter.position = textureLoad(light_position, t, 0).xyz;
-            let n = textureLoad(light_normal, t, 0);
-            emitter.normal = n.xyz;
-            emitter.lit = select(0.0, 1.0, n.w > 0.0 && any(emitter.flux > vec3f(0.0)));
+            let t = vec2u(k % params.flux_size.x, k / params.flux_size.x);
+            sender.flux = textureLoad(light_flux, vec2i(t), 0).rgb;
+            sender.position = textureLoad(light_position, vec2i(t), 0).xyz;
+            let n = textureLoad(light_normal, vec2i(t), 0);
+            sender.normal = n.xyz;
+            sender.lit = select(0.0, 1.0, n.w > 0.0 && any(sender.flux > vec3f(0.0)));
+            let omega = texel_solid_angle(t, params.flux_size, params.lamp_tan);
+            sender.area = texel_area(omega, sender.position, n.xyz, globals.lamp_pos.xyz);
         }
-        tile[local] = emitter;
+        tile[local] = sender;
         workgroupBarrier();
         if in_view && normal.w > 0.0 {
             for (var i = 0u; i < TILE; i++) {
-                let l = tile[i];
-                if l.lit > 0.0 {
-                    e += reflection_irradiance(l.flux, l.position, l.normal, x, normal.xyz, params.d_min);
+                let s = tile[i];
+                if s.lit > 0.0 {
+                    e += patch_irradiance(s.flux, s.area, s.position, s.normal, x, normal.xyz);
                 }
             }
         }

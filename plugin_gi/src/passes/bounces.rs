@@ -1,71 +1,55 @@
 //! Further bounces (settings.bounces ≥ 2, attached lamp): each feeds the previous bounce's
-//! irradiance back as flux, Φ = ρ·E·A_texel, builds a new generation of reflection lights with
-//! the same machinery, shades them, and adds their irradiance to the total.
+//! irradiance back as flux, Φ = ρ·E·A_texel, builds a new pyramid with the same machinery and
+//! gathers it, adding its irradiance to the total.
 
-use engine::graph::{PassContext, PassDecl, RenderPass, SizeRule};
+use engine::graph::{PassContext, PassDecl, RenderPass};
 use engine::passes::names::{GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION};
-use engine::passes::{bind_textures, color_pass, fullscreen_pipeline, textures_layout};
 use engine::wgpu;
 
-use super::lights::{params, table_key};
-use super::shade::{VolumeShader, ADDITIVE};
+use super::flux::{flux_size, indirect_size, params};
+use super::gather::IRRADIANCE_FORMAT;
 use crate::bindings::uniform_buffer;
-use crate::gpu_types::{names, GiParams, DRAW_ARGS_SIZE};
-use crate::light_builder::{light_capacity, BuildTargets, LightBuilder};
+use crate::gather::{Gather, GatherTargets};
+use crate::gpu_types::{names, GiParams, CENTRE_LIGHTS, GATHER_STATS_SIZE};
+use crate::pyramid::{FluxPyramid, PyramidInputs};
 use crate::shared::GiHandle;
 
-pub const ADD_SHADER: &str = include_str!("../../../shaders/gi/add.wgsl");
-
-/// Working storage, sized to the view and the budget.
+/// Working storage, sized to the view.
 struct Scratch {
-    key: ((u32, u32), (u32, u32), u32),
+    key: ((u32, u32), (u32, u32)),
     flux: wgpu::TextureView,
     flux_view: wgpu::TextureView,
-    /// The previous bounce's irradiance and the one being shaded (swapped each bounce).
-    irradiance: [wgpu::Texture; 2],
+    /// The previous bounce's irradiance and the one being gathered (swapped each bounce).
+    bounce: [wgpu::Texture; 2],
+    /// The total so far, which the gather adds to.
+    total: wgpu::Texture,
+    stats: wgpu::Buffer,
     lights: wgpu::Buffer,
-    args: wgpu::Buffer,
 }
 
 pub struct BouncePass {
     handle: GiHandle,
     /// This pass's GiParams (source = previous bounce).
     params: wgpu::Buffer,
-    builder: LightBuilder,
-    shader: VolumeShader,
-    add_layout: wgpu::BindGroupLayout,
-    add: wgpu::RenderPipeline,
+    pyramid: FluxPyramid,
+    gather: Gather,
     scratch: Option<Scratch>,
 }
 
 impl BouncePass {
-    pub(crate) fn new(gpu_ctx: &engine::gpu::Gpu, globals: &wgpu::BindGroupLayout, handle: GiHandle) -> Self {
-        let device = &gpu_ctx.device;
+    pub(crate) fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, handle: GiHandle) -> Self {
         let params = uniform_buffer(device, "gi bounce params", std::mem::size_of::<GiParams>() as u64);
-        let shader = VolumeShader::new(gpu_ctx, globals);
-        let add_layout = textures_layout(device, "gi add bounce", 1, false);
-        let module = engine::shader::module(device, "gi add bounce", ADD_SHADER, &[]);
-        let add = fullscreen_pipeline(
-            device,
-            "gi add bounce",
-            &module,
-            &[Some(globals), Some(&add_layout)],
-            shader.format,
-            Some(ADDITIVE),
-        );
         Self {
-            builder: LightBuilder::new(device, globals, params.clone()),
+            pyramid: FluxPyramid::new(device, globals, params.clone()),
+            gather: Gather::new(device, globals, params.clone()),
             params,
-            shader,
-            add_layout,
-            add,
             handle,
             scratch: None,
         }
     }
 
-    fn ensure_scratch(&mut self, device: &wgpu::Device, size: (u32, u32), low: (u32, u32), budget: u32) {
-        let key = (size, low, budget);
+    fn ensure_scratch(&mut self, device: &wgpu::Device, size: (u32, u32), low: (u32, u32)) {
+        let key = (size, low);
         if self.scratch.as_ref().is_some_and(|s| s.key == key) {
             return;
         }
@@ -82,15 +66,13 @@ impl BouncePass {
             })
         };
         let storage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
-        let target = wgpu::TextureUsages::RENDER_ATTACHMENT
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_DST;
+        let copied = storage | wgpu::TextureUsages::COPY_DST;
         let view = |t: wgpu::Texture| t.create_view(&Default::default());
-        let buffer = |label, size, usage| {
+        let buffer = |label, size| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size,
-                usage: usage | wgpu::BufferUsages::STORAGE,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             })
         };
@@ -99,9 +81,10 @@ impl BouncePass {
             flux: view(texture("gi bounce flux", size, wgpu::TextureFormat::Rgba32Float, storage)),
             // The flux view is only shown for the first bounce: a 1×1 sink.
             flux_view: view(texture("gi bounce flux view", (1, 1), wgpu::TextureFormat::Rgba16Float, storage)),
-            irradiance: [0, 1].map(|_| texture("gi bounce irradiance", low, self.shader.format, target)),
-            lights: buffer("gi bounce lights", light_capacity(budget) as u64 * 48, wgpu::BufferUsages::empty()),
-            args: buffer("gi bounce draw args", DRAW_ARGS_SIZE, wgpu::BufferUsages::INDIRECT),
+            bounce: [0, 1].map(|_| texture("gi bounce irradiance", low, IRRADIANCE_FORMAT, copied)),
+            total: texture("gi bounce total", low, IRRADIANCE_FORMAT, copied),
+            stats: buffer("gi bounce stats", GATHER_STATS_SIZE),
+            lights: buffer("gi bounce lights", CENTRE_LIGHTS * 48),
         });
     }
 }
@@ -122,55 +105,44 @@ impl RenderPass for BouncePass {
     fn run(&mut self, ctx: &mut PassContext<'_>) {
         let (device, queue) = (&ctx.gpu.device, &ctx.gpu.queue);
         let settings = self.handle.settings();
-        let size = ctx.frame.size;
-        let low = SizeRule::ViewScaled(settings.resolution_scale).resolve(size);
+        let size = flux_size(ctx);
+        let low = indirect_size(&settings, ctx);
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params(&settings, ctx, 1)));
-        self.builder.prepare(device, queue, table_key(&settings, ctx));
-        self.ensure_scratch(device, size, low, settings.light_budget);
+        self.pyramid.prepare(device, queue, size);
+        self.ensure_scratch(device, size, low);
         let scratch = self.scratch.as_ref().expect("sized above");
+        let extent = wgpu::Extent3d { width: low.0, height: low.1, depth_or_array_layers: 1 };
         let total = ctx.texture(names::IRRADIANCE);
-        // Bounce 1's irradiance becomes the first source.
-        ctx.encoder.copy_texture_to_texture(
-            total.as_image_copy(),
-            scratch.irradiance[0].as_image_copy(),
-            wgpu::Extent3d { width: low.0, height: low.1, depth_or_array_layers: 1 },
-        );
+        // Bounce 1's irradiance is the first source.
+        ctx.encoder.copy_texture_to_texture(total.as_image_copy(), scratch.bounce[0].as_image_copy(), extent);
         let mut dispatches = 0;
         for bounce in 2..=settings.bounces {
             let (src, dst) = if bounce % 2 == 0 { (0, 1) } else { (1, 0) };
-            let src_view = scratch.irradiance[src].create_view(&Default::default());
-            let dst_view = scratch.irradiance[dst].create_view(&Default::default());
-            let targets = BuildTargets {
+            let src_view = scratch.bounce[src].create_view(&Default::default());
+            let dst_view = scratch.bounce[dst].create_view(&Default::default());
+            let inputs = PyramidInputs {
                 albedo: ctx.view(GBUFFER_ALBEDO),
                 normal: ctx.view(GBUFFER_NORMAL),
                 position: ctx.view(GBUFFER_POSITION),
                 previous: &src_view,
                 flux: &scratch.flux,
                 flux_view: &scratch.flux_view,
-                lights: &scratch.lights,
-                args: &scratch.args,
             };
-            dispatches += self.builder.record(device, ctx.encoder, ctx.frame.globals, &targets);
-            let gbuffer = (ctx.view(GBUFFER_NORMAL), ctx.view(GBUFFER_POSITION));
-            self.shader.record(
-                device,
-                ctx.encoder,
-                ctx.frame.globals,
-                &self.params,
-                &scratch.lights,
-                &scratch.args,
-                gbuffer,
-                &dst_view,
-            );
-            let group = bind_textures(device, &self.add_layout, &[&dst_view], None);
-            let mut pass = color_pass(ctx.encoder, "gi add bounce", ctx.view(names::IRRADIANCE), true);
-            pass.set_pipeline(&self.add);
-            pass.set_bind_group(0, ctx.frame.globals, &[]);
-            pass.set_bind_group(1, &group, &[]);
-            pass.draw(0..3, 0..1);
+            dispatches += self.pyramid.record(device, ctx.encoder, ctx.frame.globals, &inputs);
+            ctx.encoder.copy_texture_to_texture(total.as_image_copy(), scratch.total.as_image_copy(), extent);
+            let total_view = scratch.total.create_view(&Default::default());
+            let targets = GatherTargets {
+                normal: ctx.view(GBUFFER_NORMAL),
+                position: ctx.view(GBUFFER_POSITION),
+                irradiance: ctx.view(names::IRRADIANCE),
+                accumulate: &total_view,
+                bounce: &dst_view,
+                stats: &scratch.stats,
+                lights: &scratch.lights,
+            };
+            let buffers = self.pyramid.buffers();
+            dispatches += self.gather.record(device, ctx.encoder, ctx.frame.globals, buffers, low, &targets);
         }
-        let mut shared = self.handle.0.borrow_mut();
-        shared.stats.dispatches += dispatches;
-        shared.stats.draws += 2 * (settings.bounces - 1);
+        self.handle.0.borrow_mut().stats.dispatches += dispatches;
     }
 }

@@ -8,12 +8,25 @@ use engine::passes::names::{GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION, HD
 use engine::passes::{color_pass, procedural_pipeline, HDR_FORMAT};
 use engine::wgpu;
 
-use super::shade::ADDITIVE;
 use crate::bindings::{bind, layout, Resource as R, Slot as S};
 use crate::gpu_types::names;
 use crate::shared::{GiHandle, GpuShared};
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/composite.wgsl");
+
+/// Adds the indirect radiance to the frame.
+const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
+    color: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+    alpha: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+};
 
 pub struct CompositePass {
     handle: GiHandle,
@@ -95,7 +108,6 @@ impl RenderPass for CompositePass {
         pass.set_bind_group(0, ctx.frame.globals, &[]);
         pass.set_bind_group(1, &group, &[]);
         pass.draw(0..3, 0..1);
-        // The shading pass's indirect draw and this one.
-        self.handle.0.borrow_mut().stats.draws += 2;
+        self.handle.0.borrow_mut().stats.draws += 1;
     }
 }

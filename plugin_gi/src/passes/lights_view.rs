@@ -36,7 +36,7 @@ impl RenderPass for LightsViewPass {
 
     fn declare(&self, d: &mut PassDecl) {
         d.read(names::LIGHTS)
-            .read(names::DRAW_ARGS)
+            .read(names::STATS)
             .read(HDR)
             .create_texture(names::LIGHTS_VIEW, TextureDesc::target(FORMAT));
     }
@@ -44,7 +44,8 @@ impl RenderPass for LightsViewPass {
     fn run(&mut self, ctx: &mut PassContext<'_>) {
         let group =
             bind(&ctx.gpu.device, &self.layout, &[R::Buffer(ctx.buffer(names::LIGHTS)), R::View(ctx.view(HDR))]);
-        let args = ctx.buffer(names::DRAW_ARGS);
+        // The stats begin with the draw arguments of the centre tile's lights.
+        let args = ctx.buffer(names::STATS);
         let mut pass = color_pass(ctx.encoder, "gi lights view", ctx.view(names::LIGHTS_VIEW), false);
         pass.set_bind_group(0, ctx.frame.globals, &[]);
         pass.set_bind_group(1, &group, &[]);

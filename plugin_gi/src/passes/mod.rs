@@ -2,17 +2,17 @@
 
 mod bounces;
 mod composite;
-mod lights;
+mod flux;
+mod gather;
 mod lights_view;
 mod reference;
-mod shade;
 
 pub use bounces::BouncePass;
 pub use composite::CompositePass;
-pub use lights::LightsPass;
+pub use flux::FluxPass;
+pub use gather::GatherPass;
 pub use lights_view::LightsViewPass;
 pub use reference::ReferencePass;
-pub use shade::ShadePass;
 
 use engine::wgpu;
 
@@ -23,17 +23,13 @@ pub fn module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderM
     engine::shader::module(device, label, source, INCLUDES)
 }
 
-pub const FLUX_SHADER: &str = include_str!("../../../shaders/gi/flux.wgsl");
-pub const REDUCE_SHADER: &str = include_str!("../../../shaders/gi/reduce.wgsl");
-pub const BUILD_SHADER: &str = include_str!("../../../shaders/gi/build_lights.wgsl");
+pub const PYRAMID_SHADER: &str = include_str!("../../../shaders/gi/pyramid.wgsl");
+pub const GATHER_SHADER: &str = include_str!("../../../shaders/gi/gather.wgsl");
 
 /// Every WGSL file of the plugin, for validation tests.
 pub const SHADERS: &[(&str, &str)] = &[
-    ("gi/flux.wgsl", FLUX_SHADER),
-    ("gi/reduce.wgsl", REDUCE_SHADER),
-    ("gi/build_lights.wgsl", BUILD_SHADER),
-    ("gi/add.wgsl", bounces::ADD_SHADER),
-    ("gi/shade.wgsl", shade::SHADER),
+    ("gi/pyramid.wgsl", PYRAMID_SHADER),
+    ("gi/gather.wgsl", GATHER_SHADER),
     ("gi/composite.wgsl", composite::SHADER),
     ("gi/lights_view.wgsl", lights_view::SHADER),
     ("gi/reference.wgsl", reference::SHADER),

@@ -1,5 +1,5 @@
-//! The brute-force reference: every flux texel a light, no merging, no cutoff (the `reference`
-//! view). Culled by the graph unless something shows or reads it.
+//! The exact one bounce: every flux texel a sender, as the small patch it is, with no merging,
+//! no cutoff and no clamp (the `reference` view). Culled by the graph unless something shows or reads it.
 
 use std::rc::Rc;
 
@@ -7,7 +7,7 @@ use engine::graph::{PassContext, PassDecl, RenderPass, SizeRule, TextureDesc};
 use engine::passes::names::{GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION};
 use engine::wgpu;
 
-use super::lights::lamp_view;
+use super::flux::lamp_view;
 use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
 use crate::gpu_types::names;
 use crate::shared::GpuShared;

@@ -1,0 +1,125 @@
+// GI flux pyramid: turns the lamp-view G-buffer into reflected flux per texel and reduces it
+// into a quadtree of reflection lights with the article's merge filter, in two dispatches:
+// `flux` writes levels 0–3 (each workgroup reduces its 8×8 texels in workgroup memory) and
+// `reduce` levels 4–6 from level 3 the same way.
+//
+// Flux per texel: Φ = ρ · I(ω) · Ω_texel (I: the lamp, plus the camera flash while attached);
+// for further bounces Φ = ρ · E · A_texel from the previous bounce's irradiance. A texel is a
+// small surface patch of area A = Ω·d²/cos θ, which the transport uses near the light.
+#include "common.wgsl"
+#include "gi_common.wgsl"
+
+@group(1) @binding(0) var gbuffer_albedo: texture_2d<f32>;
+@group(1) @binding(1) var gbuffer_normal: texture_2d<f32>;
+@group(1) @binding(2) var gbuffer_position: texture_2d<f32>;
+@group(1) @binding(3) var<uniform> params: GiParams;
+@group(1) @binding(4) var<uniform> table: Levels;
+@group(1) @binding(5) var<storage, read_write> nodes: array<Node>;
+@group(1) @binding(6) var flux_out: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(7) var flux_view_out: texture_storage_2d<rgba16float, write>;
+// The previous bounce's irradiance (only read when params.source == 1).
+@group(1) @binding(8) var previous_irradiance: texture_2d<f32>;
+
+var<workgroup> wide: array<Node, 64>;
+var<workgroup> narrow: array<Node, 16>;
+
+fn store_node(level: u32, t: vec2u, node: Node) {
+    let l = table.levels[level];
+    if t.x < l.y && t.y < l.z {
+        nodes[l.x + t.y * l.y + t.x] = node;
+    }
+}
+
+fn merge(c0: Node, c1: Node, c2: Node, c3: Node) -> Node {
+    return merge4(c0, c1, c2, c3, globals.lamp_pos.xyz, params.cos_merge, params.merge_distance);
+}
+
+// `wide` holds this workgroup's 8×8 nodes of level `base`: writes its 4×4, 2×2 and 1×1 nodes
+// of the three levels above.
+fn reduce_three_levels(local: vec2u, group: vec2u, base: u32) {
+    workgroupBarrier();
+    if all(local < vec2u(4u)) {
+        let c = local * 2u;
+        let node = merge(wide[c.y * 8u + c.x], wide[c.y * 8u + c.x + 1u], wide[(c.y + 1u) * 8u + c.x],
+            wide[(c.y + 1u) * 8u + c.x + 1u]);
+        narrow[local.y * 4u + local.x] = node;
+        store_node(base + 1u, group * 4u + local, node);
+    }
+    workgroupBarrier();
+    if all(local < vec2u(2u)) {
+        let c = local * 2u;
+        let node = merge(narrow[c.y * 4u + c.x], narrow[c.y * 4u + c.x + 1u], narrow[(c.y + 1u) * 4u + c.x],
+            narrow[(c.y + 1u) * 4u + c.x + 1u]);
+        wide[local.y * 2u + local.x] = node;
+        store_node(base + 2u, group * 2u + local, node);
+    }
+    workgroupBarrier();
+    if all(local == vec2u(0u)) {
+        store_node(base + 3u, group, merge(wide[0], wide[1], wide[2], wide[3]));
+    }
+}
+
+// One texel of the lamp view as a light (zero flux where nothing is seen or nothing is lit).
+fn texel_node(id: vec2u) -> Node {
+    var node: Node;
+    node.merged = 1u;
+    let t = vec2i(id);
+    let normal = textureLoad(gbuffer_normal, t, 0);
+    let omega = texel_solid_angle(id, params.flux_size, params.lamp_tan);
+    var flux = vec3f(0.0);
+    if normal.w > 0.0 {
+        let x = textureLoad(gbuffer_position, t, 0).xyz;
+        let rho = textureLoad(gbuffer_albedo, t, 0).rgb;
+        let area = texel_area(omega, x, normal.xyz, globals.lamp_pos.xyz);
+        if params.source == 0u {
+            var intensity = vec3f(0.0);
+            if globals.lamp_pos.w > 0.5 {
+                intensity = lamp_intensity_towards(x);
+            }
+            // Attached, the camera flash sits where the lamp does and sees what it sees, so
+            // its reflected flux is ρ·I_flash·Ω_texel too. Detached, this view is the lamp's
+            // and cannot tell what the flash lights: the flash then lights directly only.
+            if globals.params.z < 0.5 {
+                intensity += globals.camera_flash.rgb;
+            }
+            flux = rho * intensity * omega;
+        } else {
+            let low = vec2u(vec2f(id) * vec2f(params.indirect_size) / vec2f(params.flux_size));
+            let e = textureLoad(previous_irradiance, vec2i(low), 0).rgb;
+            flux = rho * e * area;
+        }
+        node.position = x;
+        node.normal = normal.xyz;
+        node.area = area;
+        node.extent = sqrt(area / PI);
+    }
+    node.flux = flux;
+    textureStore(flux_out, t, vec4f(flux, 1.0));
+    // The flux view: Φ per unit lamp solid angle relative to the lamp power, i.e. ρ·T(ω).
+    textureStore(flux_view_out, t, vec4f(flux / (omega * max(params.lamp_power, 1e-20)), 1.0));
+    return node;
+}
+
+@compute @workgroup_size(8, 8)
+fn flux(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
+    @builtin(workgroup_id) group: vec3u) {
+    var node: Node;
+    if all(id.xy < params.flux_size) {
+        node = texel_node(id.xy);
+        store_node(0u, id.xy, node);
+    }
+    wide[local.y * 8u + local.x] = node;
+    reduce_three_levels(local.xy, group.xy, 0u);
+}
+
+@compute @workgroup_size(8, 8)
+fn reduce(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
+    @builtin(workgroup_id) group: vec3u) {
+    var node: Node;
+    let l = table.levels[3];
+    if id.x < l.y && id.y < l.z {
+        node = nodes[l.x + id.y * l.y + id.x];
+    }
+    wide[local.y * 8u + local.x] = node;
+    reduce_three_levels(local.xy, group.xy, 3u);
+}
