@@ -65,7 +65,7 @@ pub struct RenderArgs {
     /// Indirect light (global illumination) on or off.
     #[arg(long, value_parser = parse_on_off)]
     pub gi: Option<bool>,
-    /// A GI setting, e.g. gi.light_budget=2048 (repeatable; see README for the names).
+    /// A GI setting, e.g. gi.split_ratio=0.3 (repeatable; see README for the names).
     #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
     pub settings: Vec<(String, String)>,
 }
@@ -92,11 +92,15 @@ pub struct BenchArgs {
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
     /// Indirect light (global illumination) on or off.
-    #[arg(long, value_parser = parse_on_off)]
+    #[arg(long, value_parser = parse_on_off, conflicts_with = "compare")]
     pub gi: Option<bool>,
-    /// A GI setting, e.g. gi.light_budget=2048 (repeatable; see README for the names).
+    /// A GI setting, e.g. gi.split_ratio=0.3 (repeatable; see README for the names).
     #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
     pub settings: Vec<(String, String)>,
+    /// Render every camera with the GI off and on, alternating, and print both frame times and
+    /// their ratio: the GI's cost, measured side by side.
+    #[arg(long)]
+    pub compare: bool,
 }
 
 #[derive(clap::Args, Debug)]
@@ -113,7 +117,7 @@ pub struct RecordArgs {
     /// Indirect light (global illumination) on or off; stored in the replay.
     #[arg(long, value_parser = parse_on_off)]
     pub gi: Option<bool>,
-    /// A GI setting, e.g. gi.light_budget=2048 (repeatable); stored in the replay.
+    /// A GI setting, e.g. gi.split_ratio=0.3 (repeatable); stored in the replay.
     #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
     pub settings: Vec<(String, String)>,
 }
@@ -158,7 +162,7 @@ pub struct ScriptArgs {
     /// Indirect light (global illumination) on or off; stored in the replay.
     #[arg(long, value_parser = parse_on_off)]
     pub gi: Option<bool>,
-    /// A GI setting, e.g. gi.light_budget=256 (repeatable); stored in the replay.
+    /// A GI setting, e.g. gi.split_ratio=0.3 (repeatable); stored in the replay.
     #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
     pub settings: Vec<(String, String)>,
     /// Print the world after each line of the script, with the turn and look that would aim

@@ -347,14 +347,12 @@ impl GameWindow {
     }
 
     fn overlay(&self) -> OverlayInfo {
-        let stats = self.gi.as_ref().map(|g| g.stats()).unwrap_or_default();
         OverlayInfo {
             fps: self.frame_rate.fps(),
             frame_ms: self.frame_rate.frame_ms(),
             pass_times_ms: self.pass_times.clone(),
-            // The lights actually built (read back with the pass times), else the table's slots.
-            reflection_lights: self.reflection_lights.unwrap_or(stats.slots),
-            light_capacity: stats.light_capacity,
+            // Read back with the pass times.
+            reflection_lights: self.reflection_lights.unwrap_or(0),
             ticks: self.ticks_this_frame,
         }
     }
@@ -484,7 +482,8 @@ impl WindowApp for GameWindow {
                 self.pass_times = times;
             }
             if self.config.gi.enabled {
-                self.reflection_lights = plugin_gi::readback::lights(gpu, renderer).map(|l| l.len() as u32);
+                self.reflection_lights = plugin_gi::readback::cut_stats(gpu, renderer)
+                    .map(|s| s.lights_per_tile().round() as u32);
             } else {
                 self.reflection_lights = Some(0);
             }

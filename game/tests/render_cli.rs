@@ -251,7 +251,7 @@ fn gi_flags_switch_and_tune_the_indirect_light() {
     let obj = write_cornell_obj(&dir);
     let direct = render_exr(&obj, &dir.join("direct.exr"), "direct", &[]);
     let off = render_exr(&obj, &dir.join("off.exr"), "final", &["--gi", "off"]);
-    let on = render_exr(&obj, &dir.join("on.exr"), "final", &["--set", "gi.light_budget=256", "--set", "gi.bounces=2"]);
+    let on = render_exr(&obj, &dir.join("on.exr"), "final", &["--set", "gi.split_ratio=0.3", "--set", "gi.bounces=2"]);
     let sum = |img: &image::Rgb32FImage| img.pixels().map(|p| p[0] as f64 + p[1] as f64 + p[2] as f64).sum::<f64>();
     assert!((sum(&off) - sum(&direct)).abs() <= 1e-6 * sum(&direct), "--gi off leaves the direct light alone");
     assert!(sum(&on) > 1.05 * sum(&off), "the GI adds light: on {} off {}", sum(&on), sum(&off));
@@ -264,8 +264,8 @@ fn bad_gi_flags_give_one_clear_line() {
     let out = out.to_str().unwrap();
     let good = khronos("Box.gltf");
     assert_one_line_error(
-        &["render", "--level", &good, "--out", out, "--set", "gi.light_budget=lots"],
-        &["gi.light_budget", "lots"],
+        &["render", "--level", &good, "--out", out, "--set", "gi.split_ratio=lots"],
+        &["gi.split_ratio", "lots"],
     );
     assert_one_line_error(
         &["render", "--level", &good, "--out", out, "--set", "gi.bounces=9"],

@@ -22,9 +22,11 @@ use serde::Serialize;
 
 use crate::cli::BenchArgs;
 
+mod compare;
+
 /// Frames rendered before timing starts (pipelines, pools and the GI's distribution table are
 /// built on the first frame).
-const WARMUP_FRAMES: usize = 1;
+pub(crate) const WARMUP_FRAMES: usize = 1;
 /// How far the walk goes from the spawn over the whole run, metres.
 const WALK_M: f32 = 3.0;
 /// Amplitude of the yaw sweep, degrees.
@@ -93,7 +95,7 @@ pub struct Spread {
 }
 
 impl Spread {
-    fn of(values: &[f64]) -> Self {
+    pub(crate) fn of(values: &[f64]) -> Self {
         let mut v = values.to_vec();
         v.sort_by(f64::total_cmp);
         let mean = v.iter().sum::<f64>() / v.len().max(1) as f64;
@@ -135,11 +137,14 @@ pub struct FrameFigure {
 
 #[derive(Serialize, Debug)]
 pub struct LightFigure {
-    /// Median reflection-light count over the sampled frames.
+    /// Median over the sampled frames of the reflection lights per 8×8 tile of the indirect
+    /// target (each tile's cut through the pyramid).
     pub median: f64,
-    /// Which frames were re-rendered (untimed) to read the lights back, and their counts.
+    /// Which frames were re-rendered (untimed) to read the figures back, their lights per tile,
+    /// and how many tiles filled their cut.
     pub frames: Vec<usize>,
-    pub counts: Vec<usize>,
+    pub per_tile: Vec<f64>,
+    pub full_tiles: Vec<u32>,
 }
 
 #[derive(Serialize, Debug)]
@@ -170,9 +175,6 @@ pub struct Report {
     /// 1000 / median CPU frame time.
     pub fps: f64,
     pub reflection_lights: Option<LightFigure>,
-    pub light_budget: u32,
-    pub light_capacity: u32,
-    pub distribution_slots: u32,
     pub gi_dispatches: u32,
     pub gi_draws: u32,
     pub error_vs_reference: ErrorFigure,
@@ -188,10 +190,16 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     };
     let level = engine::scene::load_level(&args.level)?;
     let gpu = Gpu::headless()?;
-    let report = bench(&gpu, &level, args, gi)?;
-    print!("{}", table(&report));
+    let text = if args.compare {
+        let report = compare::compare(&gpu, &level, args, gi)?;
+        print!("{}", compare::table(&report));
+        serde_json::to_string_pretty(&report)?
+    } else {
+        let report = bench(&gpu, &level, args, gi)?;
+        print!("{}", table(&report));
+        serde_json::to_string_pretty(&report)?
+    };
     if let Some((path, mut file)) = json {
-        let text = serde_json::to_string_pretty(&report)?;
         file.write_all(text.as_bytes())
             .and_then(|_| file.write_all(b"\n"))
             .with_context(|| format!("--json {}", path.display()))?;
@@ -237,19 +245,23 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
     } else {
         (0..LIGHT_SAMPLES).map(|k| k * (n - 1) / (LIGHT_SAMPLES - 1)).collect()
     };
-    let mut counts = Vec::new();
+    let (mut per_tile, mut full_tiles) = (Vec::new(), Vec::new());
     for &i in &samples {
         view.camera = path.camera(i, n);
         renderer.render(gpu, &view, &target.texture, &target.view)?;
-        match plugin_gi::readback::lights(gpu, &renderer) {
-            Some(lights) => counts.push(lights.len()),
+        match plugin_gi::readback::cut_stats(gpu, &renderer) {
+            Some(cut) => {
+                per_tile.push(cut.lights_per_tile());
+                full_tiles.push(cut.full_tiles);
+            }
             None => break, // the GI is off: its passes are not scheduled
         }
     }
-    let reflection_lights = (counts.len() == samples.len()).then(|| LightFigure {
-        median: Spread::of(&counts.iter().map(|&c| c as f64).collect::<Vec<_>>()).median,
+    let reflection_lights = (per_tile.len() == samples.len()).then(|| LightFigure {
+        median: Spread::of(&per_tile).median,
         frames: samples,
-        counts,
+        per_tile,
+        full_tiles,
     });
 
     // The GI against brute force, on the first frame's camera at a small size.
@@ -291,9 +303,6 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
         fps: 1e3 / cpu_frame_ms.median,
         cpu_frame_ms,
         reflection_lights,
-        light_budget: settings.light_budget,
-        light_capacity: stats.light_capacity,
-        distribution_slots: stats.slots,
         gi_dispatches: stats.dispatches,
         gi_draws: stats.draws,
         error_vs_reference: ErrorFigure { size: [ERROR_SIZE.0, ERROR_SIZE.1], frame: 0, relative_l2_block8: error },
@@ -313,11 +322,11 @@ pub fn table(r: &Report) -> String {
     let _ = writeln!(s, "camera: {}", r.camera_path);
     let _ = writeln!(
         s,
-        "GI: {}, light budget {}, instance capacity {}, distribution slots {}",
+        "GI: {}, split ratio {}, indirect target at {} of the view, {} bounce(s)",
         if r.gi.enabled { "on" } else { "off" },
-        r.light_budget,
-        r.light_capacity,
-        r.distribution_slots
+        r.gi.split_ratio,
+        r.gi.resolution_scale,
+        r.gi.bounces
     );
     let _ = writeln!(s);
     let _ = writeln!(s, "| pass | GPU median ms | GPU p90 ms | share |");
@@ -340,7 +349,15 @@ pub fn table(r: &Report) -> String {
     let _ = writeln!(s);
     match &r.reflection_lights {
         Some(l) => {
-            let _ = writeln!(s, "reflection lights: median {} (frames {:?}: {:?})", l.median, l.frames, l.counts);
+            let per_tile: Vec<String> = l.per_tile.iter().map(|v| format!("{v:.0}")).collect();
+            let _ = writeln!(
+                s,
+                "reflection lights per 8x8 tile: median {:.0} (frames {:?}: [{}]; tiles with a full cut: {:?})",
+                l.median,
+                l.frames,
+                per_tile.join(", "),
+                l.full_tiles
+            );
         }
         None => {
             let _ = writeln!(s, "reflection lights: none (GI off)");

@@ -11,7 +11,7 @@ pub const TITLE: &str = "Global illumination";
 pub const HINT: &str = "F1: settings · Esc: release mouse";
 
 /// Fields whose range spans orders of magnitude get a logarithmic slider.
-const LOGARITHMIC: &[&str] = &["cutoff", "light_budget"];
+const LOGARITHMIC: &[&str] = &["split_ratio"];
 
 /// The panel's contents: an on/off checkbox, a slider per numeric field (hover text: the
 /// field's help) and a reset button. Returns whether anything changed.
@@ -100,8 +100,8 @@ mod tests {
         {
             assert_eq!(shown.iter().filter(|&&t| t == label).count(), 1, "'{label}' once in {shown:?}");
         }
-        // Each slider shows its value beside its name, e.g. light_budget's 1024.
-        assert!(shown.contains(&"1024"), "light_budget's value in {shown:?}");
+        // Each slider shows its value beside its name, e.g. merge_normal_deg's 25.
+        assert!(shown.contains(&"25"), "merge_normal_deg's value in {shown:?}");
     }
 
     #[test]
@@ -117,9 +117,6 @@ mod tests {
             assert_eq!(slider_value(&mut s, field, None), low, "{} reads back", field.name);
             assert_eq!(s.get(field.name), Some(low));
         }
-        let budget = GiSettings::FIELDS.iter().find(|f| f.name == "light_budget").unwrap();
-        assert_eq!(slider_value(&mut s, budget, Some(300.4)), 300.0);
-        assert_eq!(s.light_budget, 300);
         let bounces = GiSettings::FIELDS.iter().find(|f| f.name == "bounces").unwrap();
         assert_eq!(slider_value(&mut s, bounces, Some(2.6)), 3.0);
     }
@@ -127,7 +124,7 @@ mod tests {
     #[test]
     fn reset_button_restores_the_defaults() {
         let ctx = egui::Context::default();
-        let mut s = GiSettings { enabled: false, light_budget: 64, bounces: 3, ..GiSettings::default() };
+        let mut s = GiSettings { enabled: false, split_ratio: 0.1, bounces: 3, ..GiSettings::default() };
         let mut output = None;
         for _ in 0..3 {
             output = Some(pass(&ctx, &mut s, Vec::new()).1);

@@ -11,9 +11,8 @@ pub struct OverlayInfo {
     /// Each render-graph pass and its GPU time, in execution order (`Renderer::last_pass_times`);
     /// empty when timing is off or unsupported.
     pub pass_times_ms: Vec<(String, f64)>,
-    /// The GI's reflection lights last frame, and how many its buffer holds.
+    /// The reflection lights that lit an 8×8 tile of the indirect target last frame, on average.
     pub reflection_lights: u32,
-    pub light_capacity: u32,
     /// Simulation ticks run this frame.
     pub ticks: u32,
 }
@@ -52,7 +51,7 @@ pub fn table(info: &OverlayInfo) -> String {
         let total: f64 = info.pass_times_ms.iter().map(|(_, ms)| ms).sum();
         out += &row(" total", format!("{total:.3}"));
     }
-    out += &row("GI lights", format!("{} / {}", info.reflection_lights, info.light_capacity));
+    out += &row("GI lights", format!("{}/tile", info.reflection_lights));
     out += &row("ticks", info.ticks.to_string());
     out.pop(); // the last newline
     out
@@ -142,7 +141,6 @@ mod tests {
             frame_ms: 16.68,
             pass_times_ms: vec![("gbuffer".into(), 1.25), ("gi_shade".into(), 3.5)],
             reflection_lights: 1234,
-            light_capacity: 16384,
             ticks: 1,
         };
         let text = table(&info);
@@ -152,7 +150,7 @@ mod tests {
         assert!(lines.contains(&" gbuffer             1.250"), "{text}");
         assert!(lines.contains(&" gi_shade            3.500"), "{text}");
         assert!(lines.contains(&" total               4.750"), "{text}");
-        assert!(lines.contains(&"GI lights     1234 / 16384"), "{text}");
+        assert!(lines.contains(&"GI lights        1234/tile"), "{text}");
         assert!(lines.iter().all(|l| l.chars().count() == lines[0].chars().count()), "aligned:\n{text}");
         assert!(table(&OverlayInfo::default()).contains("GPU ms                 off"));
 

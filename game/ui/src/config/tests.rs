@@ -29,13 +29,12 @@ fn changed() -> Config {
     bindings.clear(Action::Crouch, 1);
     let gi = GiSettings {
         enabled: false,
-        light_budget: 300,
         merge_normal_deg: 12.5,
         merge_distance: 0.3,
-        cutoff: 2.5e-5,
-        d_min: 0.07,
+        split_ratio: 0.3,
         bounces: 3,
         resolution_scale: 0.3,
+        ..GiSettings::default()
     };
     Config {
         mouse_sensitivity: 1.37,
@@ -86,7 +85,7 @@ fn the_file_is_readable_toml() {
     {
         assert!(text.contains(expected), "{expected:?} in\n{text}");
     }
-    for expected in ["[gi]\n", "enabled = true\n", "light_budget = 1024\n", "cutoff = 0.001\n"] {
+    for expected in ["[gi]\n", "enabled = true\n", "split_ratio = 0.5\n", "resolution_scale = 0.25\n"] {
         assert!(text.contains(expected), "{expected:?} in\n{text}");
     }
     assert!(text.parse::<toml::Table>().is_ok());
@@ -163,8 +162,8 @@ fn out_of_range_and_mistyped_values_are_named() {
     let e = parse_err("[gi]\nbounces = 7\n");
     assert_eq!((e.line, e.key.as_deref()), (Some(2), Some("gi.bounces")), "{e}");
     assert!(e.problem.contains("out of range") && !e.problem.starts_with("gi."), "{e}");
-    let e = parse_err("[gi]\nlight_budget = \"many\"\n");
-    assert!(e.to_string().contains("gi.light_budget: expected a number, found string"), "{e}");
+    let e = parse_err("[gi]\nsplit_ratio = \"many\"\n");
+    assert!(e.to_string().contains("gi.split_ratio: expected a number, found string"), "{e}");
 }
 
 #[test]
