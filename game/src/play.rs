@@ -482,8 +482,8 @@ impl WindowApp for GameWindow {
                 self.pass_times = times;
             }
             if self.config.gi.enabled {
-                self.reflection_lights = plugin_gi::readback::cut_stats(gpu, renderer)
-                    .map(|s| s.lights_per_tile().round() as u32);
+                self.reflection_lights =
+                    plugin_gi::readback::cut_stats(gpu, renderer).map(|s| s.lights_per_tile().round() as u32);
             } else {
                 self.reflection_lights = Some(0);
             }

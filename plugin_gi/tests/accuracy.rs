@@ -67,7 +67,9 @@ fn check(name: &str, r: &mut GiRender, gpu: &engine::gpu::Gpu, view: &ViewState,
         false => DEFAULT_LIMITS.iter().find(|(n, _)| *n == name).expect("a limit for every view").1,
     };
     let bad = f.error > limit.0 || f.energy.abs() > limit.1;
-    bad.then(|| format!("{name} (full resolution: {full:?}): error {:.4}, energy {:+.4}, limits {limit:?}", f.error, f.energy))
+    bad.then(|| {
+        format!("{name} (full resolution: {full:?}): error {:.4}, energy {:+.4}, limits {limit:?}", f.error, f.energy)
+    })
 }
 
 #[test]

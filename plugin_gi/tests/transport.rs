@@ -196,7 +196,8 @@ fn second_bounce_matches_a_cpu_computation() {
     let texels = texels(&gpu, &r, size);
     let flux1: Vec<[f64; 3]> = texels.iter().map(|t| t.rho.map(|rho| rho * power * t.omega)).collect();
     let e1 = cpu_irradiance(&texels, &flux1);
-    let flux2: Vec<[f64; 3]> = texels.iter().zip(&e1).map(|(t, e)| [0, 1, 2].map(|c| t.rho[c] * e[c] * t.area)).collect();
+    let flux2: Vec<[f64; 3]> =
+        texels.iter().zip(&e1).map(|(t, e)| [0, 1, 2].map(|c| t.rho[c] * e[c] * t.area)).collect();
     let e2 = cpu_irradiance(&texels, &flux2);
     let (mut num, mut den, mut second) = (0.0, 0.0, 0.0);
     for ((t, a), b) in texels.iter().zip(&e1).zip(&e2) {

@@ -48,7 +48,12 @@ impl GatherPass {
         gpu: Rc<GpuShared>,
         pyramid: Rc<RefCell<FluxPyramid>>,
     ) -> Self {
-        Self { gather: Gather::new(device, globals, gpu.params.clone()), handle, pyramid, sinks: [sink(device), sink(device)] }
+        Self {
+            gather: Gather::new(device, globals, gpu.params.clone()),
+            handle,
+            pyramid,
+            sinks: [sink(device), sink(device)],
+        }
     }
 }
 
