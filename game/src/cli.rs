@@ -65,7 +65,7 @@ pub struct RenderArgs {
     /// Indirect light (global illumination) on or off.
     #[arg(long, value_parser = parse_on_off)]
     pub gi: Option<bool>,
-    /// A GI setting, e.g. gi.split_ratio=0.3 (repeatable; see README for the names).
+    /// A GI setting, e.g. gi.split_ratio=0.3 (repeatable; see docs/gi.md for the names).
     #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
     pub settings: Vec<(String, String)>,
 }
@@ -82,25 +82,52 @@ pub struct BenchArgs {
     /// A level folder or a bare .gltf/.glb/.obj file.
     #[arg(long)]
     pub level: PathBuf,
-    /// Frame size in pixels.
-    #[arg(long, default_value = "640x360", value_parser = parse_size)]
-    pub size: (u32, u32),
-    /// Timed frames along the camera path.
-    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=100_000))]
-    pub frames: u32,
+    /// Frame size in pixels [default: 640x360; 160x120 with --pan, whose reference is O(pixels²)].
+    #[arg(long, value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+    /// Timed frames along the camera path [default: 60; 16 with --pan].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub frames: Option<u32>,
     /// Also write every figure to this file as JSON.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
     /// Indirect light (global illumination) on or off.
-    #[arg(long, value_parser = parse_on_off, conflicts_with = "compare")]
+    #[arg(long, value_parser = parse_on_off, conflicts_with_all = ["compare", "pan"])]
     pub gi: Option<bool>,
-    /// A GI setting, e.g. gi.split_ratio=0.3 (repeatable; see README for the names).
+    /// A GI setting, e.g. gi.split_ratio=0.3 (repeatable; see docs/gi.md for the names).
     #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
     pub settings: Vec<(String, String)>,
     /// Render every camera with the GI off and on, alternating, and print both frame times and
     /// their ratio: the GI's cost, measured side by side.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "pan")]
     pub compare: bool,
+    /// Pan slowly from a fixed view and print the GI's flicker: how much its error against the
+    /// exact reference moves from one frame to the next.
+    #[arg(long)]
+    pub pan: bool,
+    /// With --pan: camera eye and target, EX,EY,EZ:TX,TY,TZ (metres) [default: the level's start].
+    #[arg(long, value_parser = parse_camera, allow_hyphen_values = true, requires = "pan")]
+    pub camera: Option<(Vec3, Vec3)>,
+    /// With --pan: vertical field of view of camera and headlamp, degrees.
+    #[arg(long, value_parser = parse_fov, requires = "pan")]
+    pub fov: Option<f32>,
+    /// With --pan: degrees turned right (towards +X when looking down −Z) per frame.
+    #[arg(long, default_value_t = 0.5, value_parser = parse_pan_deg, requires = "pan")]
+    pub pan_deg: f32,
+    /// With --pan: write each frame's linear indirect light and reference as
+    /// DIR/indirect_NNN.exr and DIR/reference_NNN.exr (the folder is created).
+    #[arg(long, value_name = "DIR", requires = "pan")]
+    pub out_dir: Option<PathBuf>,
+}
+
+impl BenchArgs {
+    pub fn size(&self) -> (u32, u32) {
+        self.size.unwrap_or(if self.pan { (160, 120) } else { (640, 360) })
+    }
+
+    pub fn frames(&self) -> u32 {
+        self.frames.unwrap_or(if self.pan { 16 } else { 60 })
+    }
 }
 
 #[derive(clap::Args, Debug)]
@@ -148,7 +175,7 @@ pub struct ReplayArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct ScriptArgs {
-    /// The input script (see README: one `TICKS ACTION...` step per line).
+    /// The input script (see docs/replays.md: one `TICKS ACTION...` step per line).
     pub script: PathBuf,
     /// A level folder or a bare .gltf/.glb/.obj file.
     #[arg(long)]
@@ -220,6 +247,13 @@ pub fn parse_camera(s: &str) -> Result<(Vec3, Vec3), String> {
         return Err(format!("'{s}': eye and target are the same point"));
     }
     Ok((eye, target))
+}
+
+pub fn parse_pan_deg(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() && v.abs() <= 45.0 => Ok(v),
+        _ => Err(format!("'{s}': the pan must be a number of degrees per frame from -45 to 45")),
+    }
 }
 
 pub fn parse_fov(s: &str) -> Result<f32, String> {

@@ -26,6 +26,63 @@ pub fn block_error(test: &image::Rgba32FImage, reference: &image::Rgba32FImage) 
     (num / den).sqrt()
 }
 
+/// Means of `block`×`block` blocks of the three colour channels, row by row (the blocks that fit
+/// whole): the scale at which the flicker figure compares frames.
+pub fn block_means(image: &image::Rgba32FImage, block: u32) -> Vec<f64> {
+    let (w, h) = image.dimensions();
+    let mut out = Vec::with_capacity(((w / block) * (h / block) * 3) as usize);
+    let n = f64::from(block * block);
+    for by in 0..h / block {
+        for bx in 0..w / block {
+            for c in 0..3 {
+                let mut sum = 0.0f64;
+                for y in by * block..(by + 1) * block {
+                    for x in bx * block..(bx + 1) * block {
+                        sum += f64::from(image.get_pixel(x, y)[c]);
+                    }
+                }
+                out.push(sum / n);
+            }
+        }
+    }
+    out
+}
+
+fn norm(v: impl Iterator<Item = f64>) -> f64 {
+    v.map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// How much the GI's error moves from frame to frame of a sequence:
+/// mean over t of ‖e(t+1) − e(t)‖ / mean over t of ‖ref(t)‖, with e(t) = test(t) − ref(t), all
+/// on 4×4-block means. A steady error (a bias that holds still) gives 0; an error that jumps
+/// around as the view moves is shimmer. NaN with fewer than two frames or a black reference.
+pub fn flicker(tests: &[Vec<f64>], references: &[Vec<f64>]) -> f64 {
+    assert_eq!(tests.len(), references.len(), "flicker compares one test frame per reference frame");
+    if tests.len() < 2 {
+        return f64::NAN;
+    }
+    let error = |t: usize| -> Vec<f64> { tests[t].iter().zip(&references[t]).map(|(a, b)| a - b).collect() };
+    let mut steps = 0.0;
+    for t in 0..tests.len() - 1 {
+        let (a, b) = (error(t), error(t + 1));
+        steps += norm(a.iter().zip(&b).map(|(x, y)| y - x));
+    }
+    let steps = steps / (tests.len() - 1) as f64;
+    let signal = references.iter().map(|r| norm(r.iter().copied())).sum::<f64>() / references.len() as f64;
+    steps / signal
+}
+
+/// How much a sequence itself changes from frame to frame, relative to its mean norm: the
+/// reference's own motion, to read the flicker figure against.
+pub fn change(frames: &[Vec<f64>]) -> f64 {
+    if frames.len() < 2 {
+        return f64::NAN;
+    }
+    let steps: f64 = frames.windows(2).map(|w| norm(w[0].iter().zip(&w[1]).map(|(a, b)| b - a))).sum::<f64>()
+        / (frames.len() - 1) as f64;
+    steps / (frames.iter().map(|f| norm(f.iter().copied())).sum::<f64>() / frames.len() as f64)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -43,5 +100,28 @@ mod tests {
         noisy.put_pixel(0, 0, image::Rgba([2.0, 2.0, 2.0, 1.0]));
         noisy.put_pixel(1, 0, image::Rgba([0.0, 0.0, 0.0, 1.0]));
         assert!(block_error(&noisy, &flat(8, 8, 1.0)) < 1e-9);
+    }
+
+    #[test]
+    fn block_means_average_each_block_and_channel() {
+        let mut img = flat(8, 4, 1.0);
+        img.put_pixel(7, 3, image::Rgba([17.0, 1.0, 1.0, 1.0]));
+        assert_eq!(block_means(&img, 4), vec![1.0, 1.0, 1.0, 2.0, 1.0, 1.0]);
+    }
+
+    #[test]
+    fn flicker_sees_an_error_that_moves_but_not_one_that_holds_still() {
+        let reference = vec![vec![1.0, 1.0], vec![1.0, 1.0], vec![1.0, 1.0]];
+        // A constant bias does not flicker.
+        let biased = vec![vec![1.1, 0.9], vec![1.1, 0.9], vec![1.1, 0.9]];
+        assert!(flicker(&biased, &reference).abs() < 1e-12);
+        // An error that swaps sides every frame does: ‖(−0.2, 0.2)‖ / ‖(1, 1)‖ = 0.2.
+        let jumping = vec![vec![1.1, 0.9], vec![0.9, 1.1], vec![1.1, 0.9]];
+        assert!((flicker(&jumping, &reference) - 0.2).abs() < 1e-12);
+        // The same motion in the reference and the test is no error at all.
+        let moving = vec![vec![1.0, 2.0], vec![2.0, 1.0], vec![1.0, 2.0]];
+        assert!(flicker(&moving, &moving).abs() < 1e-12);
+        assert!((change(&moving) - 2f64.sqrt() / 5f64.sqrt()).abs() < 1e-12);
+        assert!(flicker(&biased[..1], &reference[..1]).is_nan());
     }
 }

@@ -49,8 +49,8 @@ pub fn compare(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSett
     }
     let path = CameraPath::for_level(level);
     let mut view = initial_view(level, &ViewOverrides::default());
-    let n = args.frames as usize;
-    let target = HeadlessTarget::new(gpu, args.size.0, args.size.1, ImageKind::Display);
+    let n = args.frames() as usize;
+    let target = HeadlessTarget::new(gpu, args.size().0, args.size().1, ImageKind::Display);
     let time = |r: &mut Renderer, view: &engine::frame::ViewState| -> anyhow::Result<f64> {
         let start = Instant::now();
         r.render(gpu, view, &target.texture, &target.view)?;
@@ -80,7 +80,7 @@ pub fn compare(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSett
     let (off_ms, on_ms) = (Spread::of(&off_ms), Spread::of(&on_ms));
     Ok(CompareReport {
         level: args.level.display().to_string(),
-        size: [args.size.0, args.size.1],
+        size: [args.size().0, args.size().1],
         frames: n,
         adapter: gpu.adapter.get_info().name,
         camera_path: path.describe(),

@@ -23,6 +23,7 @@ use serde::Serialize;
 use crate::cli::BenchArgs;
 
 mod compare;
+mod pan;
 
 /// Frames rendered before timing starts (pipelines, pools and the GI's distribution table are
 /// built on the first frame).
@@ -190,7 +191,11 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     };
     let level = engine::scene::load_level(&args.level)?;
     let gpu = Gpu::headless()?;
-    let text = if args.compare {
+    let text = if args.pan {
+        let report = pan::pan(&gpu, &level, args, gi)?;
+        print!("{}", pan::table(&report));
+        serde_json::to_string_pretty(&report)?
+    } else if args.compare {
         let report = compare::compare(&gpu, &level, args, gi)?;
         print!("{}", compare::table(&report));
         serde_json::to_string_pretty(&report)?
@@ -214,8 +219,8 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
     renderer.set_view("final").map_err(|e| anyhow!(e))?;
     let path = CameraPath::for_level(level);
     let mut view: ViewState = initial_view(level, &ViewOverrides::default());
-    let n = args.frames as usize;
-    let (w, h) = args.size;
+    let n = args.frames() as usize;
+    let (w, h) = args.size();
     let target = HeadlessTarget::new(gpu, w, h, ImageKind::Display);
 
     renderer.set_timing(true);
