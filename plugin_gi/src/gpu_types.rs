@@ -37,6 +37,9 @@ pub struct GiParams {
     pub min_level: u32,
     /// 0: flux from the lamp; 1: flux from the previous bounce's irradiance.
     pub source: u32,
+    /// 2: the gather's receivers share the cut in a 2×2 pattern; 1: each evaluates all of it.
+    pub interleave: u32,
+    pub pad: [u32; 3],
 }
 
 /// A reflection light as the gather used it: a Lambertian patch of area `area`,

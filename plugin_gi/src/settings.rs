@@ -21,6 +21,10 @@ pub struct GiSettings {
     pub bounces: u32,
     /// Size of the indirect-light target relative to the view.
     pub resolution_scale: f32,
+    /// 2: the receivers of each 2×2 share the evaluation of their tile's lights (each evaluates
+    /// a quarter and borrows the rest from neighbours on its surface): about 4× faster on
+    /// smooth surfaces. 1: every receiver evaluates every light.
+    pub interleave: u32,
 }
 
 impl Default for GiSettings {
@@ -32,6 +36,7 @@ impl Default for GiSettings {
             split_ratio: 0.5,
             bounces: 1,
             resolution_scale: 0.25,
+            interleave: 2,
         }
     }
 }
@@ -62,6 +67,7 @@ impl GiSettings {
         field("split_ratio", 0.05, 4.0, false, "split a light while its size exceeds this fraction of its distance"),
         field("bounces", 1.0, 3.0, true, "number of light bounces"),
         field("resolution_scale", 0.125, 1.0, false, "indirect target size relative to the view"),
+        field("interleave", 1.0, 2.0, true, "2: neighbouring receivers share the lights' evaluation (faster); 1: each does all"),
     ];
 
     /// The value of a numeric field by name.
@@ -72,6 +78,7 @@ impl GiSettings {
             "split_ratio" => self.split_ratio as f64,
             "bounces" => self.bounces as f64,
             "resolution_scale" => self.resolution_scale as f64,
+            "interleave" => self.interleave as f64,
             _ => return None,
         })
     }
@@ -113,6 +120,7 @@ impl GiSettings {
             "split_ratio" => self.split_ratio = v as f32,
             "bounces" => self.bounces = v.round() as u32,
             "resolution_scale" => self.resolution_scale = v as f32,
+            "interleave" => self.interleave = v.round() as u32,
             _ => {}
         }
     }

@@ -179,9 +179,9 @@ fn flux_and_reference_match_a_cpu_computation_of_the_formulas() {
 }
 
 /// The plugin at its finest: lights split down to single texels wherever they are not tiny
-/// against their distance, receivers at full resolution.
+/// against their distance, receivers at full resolution, each evaluating every light.
 fn finest(bounces: u32) -> GiSettings {
-    GiSettings { split_ratio: 0.1, resolution_scale: 1.0, bounces, ..GiSettings::default() }
+    GiSettings { split_ratio: 0.1, resolution_scale: 1.0, bounces, interleave: 1, ..GiSettings::default() }
 }
 
 /// Two bounces against a CPU computation: Φ₂ = ρ·E₁·A with A = Ω·d²/max(cos θ, 0.01).

@@ -5,7 +5,12 @@
 // from fine lights and far light from coarse ones. Every light carries all the flux of the
 // texels below it and the cut covers each lit texel once, so no energy is lost; a light whose
 // plane faces away from every receiver of the tile is left out, as it gives them nothing.
-// Then each receiver sums E = Φ/π · cos · cos / (d² + A/π) over the cut.
+// Then the receivers sum E = Φ/π · cos · cos / (d² + A/π) over the cut, interleaved: the cut's
+// lights fall into four classes (index mod 4) and each receiver of a 2×2 pattern evaluates one
+// class itself and takes the other three from its neighbours with that class (a tent filter
+// over its 3×3 neighbourhood) where they lie on its surface. A receiver with no such neighbour
+// for a class, at an edge or a corner, evaluates that class itself. Every light is counted
+// once per receiver either way; smooth surfaces cost a quarter.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -57,6 +62,8 @@ var<workgroup> cut_total: u32;
 var<workgroup> batch: array<Node, 64>;
 var<workgroup> receivers: array<vec4f, 64>;
 var<workgroup> receiver_normals: array<vec4f, 64>;
+// Each receiver's irradiance from its own class of lights, for its neighbours.
+var<workgroup> partials: array<vec3f, 64>;
 // The tile's receivers: centre and radius of a bounding sphere, mean normal and the largest
 // distance from the mean plane; w of `tile_valid` > 0 when the tile has any.
 var<workgroup> tile_sphere: vec4f;
@@ -97,6 +104,42 @@ fn tile_bounds() {
     }
     tile_sphere = vec4f(centre, radius);
     tile_plane = vec4f(normal, thickness);
+}
+
+// Whether receiver b (a neighbour of a, both in the tile) lies on a's surface: near, on its
+// plane, facing the same way. Its irradiance from a class of lights then stands for a's.
+fn same_surface(a: u32, b: u32) -> bool {
+    if receivers[b].w <= 0.0 {
+        return false;
+    }
+    let v = receivers[b].xyz - receivers[a].xyz;
+    let d = length(receivers[a].xyz - globals.camera_pos.xyz);
+    return length(v) < 0.1 * d && abs(dot(receiver_normals[a].xyz, v)) < 0.02 * d
+        && dot(receiver_normals[a].xyz, receiver_normals[b].xyz) > 0.9;
+}
+
+// The class of lights the receiver at tile position p evaluates itself.
+fn light_class(p: vec2i) -> u32 {
+    return u32(p.x & 1) + 2u * u32(p.y & 1);
+}
+
+// Tent weights of p's neighbours on p's surface, per class (x: class 0 … w: class 3).
+fn neighbour_weights(p: vec2i) -> vec4f {
+    var w = vec4f(0.0);
+    let a = u32(p.y * 8 + p.x);
+    for (var dy = -1; dy <= 1; dy++) {
+        for (var dx = -1; dx <= 1; dx++) {
+            let q = p + vec2i(dx, dy);
+            if (dx == 0 && dy == 0) || any(q < vec2i(0)) || any(q > vec2i(7)) {
+                continue;
+            }
+            if same_surface(a, u32(q.y * 8 + q.x)) {
+                let tent = select(1.0, 0.5, dx != 0) * select(1.0, 0.5, dy != 0);
+                w[light_class(q)] += tent;
+            }
+        }
+    }
+    return w;
 }
 
 fn accept(entry: u32) {
@@ -168,6 +211,23 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     }
     let count = workgroupUniformLoad(&tile_valid);
     var e = vec3f(0.0);
+    // Interleaving: this receiver's own class, and the classes it must evaluate itself too
+    // (bit c) because no neighbour on its surface has them.
+    let p = vec2i(local.xy);
+    let interleaved = params.interleave == 2u;
+    let own_class = select(0u, light_class(p), interleaved);
+    let stride = select(1u, 4u, interleaved);
+    var weights = vec4f(0.0);
+    var lacking = 0u;
+    if valid && interleaved {
+        weights = neighbour_weights(p);
+        for (var c = 0u; c < 4u; c++) {
+            if c != own_class && weights[c] <= 0.0 {
+                lacking |= 1u << c;
+            }
+        }
+    }
+    var own = vec3f(0.0);
     let centre_tile = all(group.xy == params.indirect_size / 2u / TILE);
     var shown = 0u;
     if count > 0u {
@@ -214,10 +274,19 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
                     batch[li] = node;
                 }
                 workgroupBarrier();
+                let in_batch = min(64u, lights - first);
                 if valid {
-                    for (var i = 0u; i < min(64u, lights - first); i++) {
+                    for (var i = own_class; i < in_batch; i += stride) {
                         let node = batch[i];
-                        e += patch_irradiance(node.flux, node.area, node.position, node.normal, x, n.xyz);
+                        own += patch_irradiance(node.flux, node.area, node.position, node.normal, x, n.xyz);
+                    }
+                    if lacking != 0u {
+                        for (var i = 0u; i < in_batch; i++) {
+                            if ((lacking >> (i & 3u)) & 1u) != 0u {
+                                let node = batch[i];
+                                e += patch_irradiance(node.flux, node.area, node.position, node.normal, x, n.xyz);
+                            }
+                        }
                     }
                 }
                 workgroupBarrier();
@@ -240,6 +309,31 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
         if li == 0u {
             atomicAdd(&stats.tiles, 1u);
         }
+        // The other classes from the neighbours on this surface, tent-weighted per class.
+        partials[li] = own;
+        workgroupBarrier();
+        if valid && interleaved {
+            var borrowed = array<vec3f, 4>(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
+            for (var dy = -1; dy <= 1; dy++) {
+                for (var dx = -1; dx <= 1; dx++) {
+                    let q = p + vec2i(dx, dy);
+                    if (dx == 0 && dy == 0) || any(q < vec2i(0)) || any(q > vec2i(7)) {
+                        continue;
+                    }
+                    let b = u32(q.y * 8 + q.x);
+                    if same_surface(li, b) {
+                        let tent = select(1.0, 0.5, dx != 0) * select(1.0, 0.5, dy != 0);
+                        borrowed[light_class(q)] += partials[b] * tent;
+                    }
+                }
+            }
+            for (var c = 0u; c < 4u; c++) {
+                if c != own_class && weights[c] > 0.0 {
+                    e += borrowed[c] / weights[c];
+                }
+            }
+        }
+        e += own;
     }
     if centre_tile && li == 0u {
         stats.vertex_count = 6u;

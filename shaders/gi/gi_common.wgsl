@@ -46,6 +46,11 @@ struct GiParams {
     min_level: u32,
     // 0: flux from the lamp, Φ = ρ·I·Ω; 1: flux from the previous bounce, Φ = ρ·E·A.
     source: u32,
+    // 2: receivers evaluate the cut interleaved in a 2×2 pattern; 1: each evaluates all of it.
+    interleave: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 };
 
 const PYRAMID_LEVELS: u32 = 7u;

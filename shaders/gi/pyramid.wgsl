@@ -25,7 +25,7 @@ var<workgroup> narrow: array<Node, 16>;
 
 fn store_node(level: u32, t: vec2u, node: Node) {
     let l = table.levels[level];
-    if t.x < l.y && t.y < l.z {
+    if level >= params.min_level && t.x < l.y && t.y < l.z {
         nodes[l.x + t.y * l.y + t.x] = node;
     }
 }

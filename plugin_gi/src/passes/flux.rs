@@ -69,6 +69,8 @@ pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: u32) 
         split_ratio: settings.split_ratio,
         min_level: crate::settings::min_level(ctx.frame.size.1, indirect_size(settings, ctx).1),
         source,
+        interleave: settings.interleave,
+        pad: [0; 3],
     }
 }
 
