@@ -34,6 +34,7 @@ fn changed() -> Config {
         split_ratio: 0.3,
         bounces: 3,
         resolution_scale: 0.3,
+        interleave: 1,
         ..GiSettings::default()
     };
     Config {
