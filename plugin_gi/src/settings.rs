@@ -67,7 +67,13 @@ impl GiSettings {
         field("split_ratio", 0.05, 4.0, false, "split a light while its size exceeds this fraction of its distance"),
         field("bounces", 1.0, 3.0, true, "number of light bounces"),
         field("resolution_scale", 0.125, 1.0, false, "indirect target size relative to the view"),
-        field("interleave", 1.0, 2.0, true, "2: neighbouring receivers share the lights' evaluation (faster); 1: each does all"),
+        field(
+            "interleave",
+            1.0,
+            2.0,
+            true,
+            "2: neighbouring receivers share the lights' evaluation (faster); 1: each does all",
+        ),
     ];
 
     /// The value of a numeric field by name.

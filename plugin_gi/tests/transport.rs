@@ -75,7 +75,7 @@ struct Texel {
 }
 
 /// The visible texels of the last frame, read back from the G-buffer.
-fn texels(gpu: &engine::gpu::Gpu, r: &GiRender, (w, h): (u32, u32)) -> Vec<Texel> {
+fn texels(gpu: &engine::gpu::Gpu, r: &GiRender, (w, h): (u32, u32), eye: Vec3) -> Vec<Texel> {
     let graph = r.renderer.graph();
     let texture = |name: &str| read_texture(gpu, graph.physical_texture(name).unwrap_or_else(|| panic!("{name}")));
     let (albedo, normal, position) = (
@@ -89,7 +89,6 @@ fn texels(gpu: &engine::gpu::Gpu, r: &GiRender, (w, h): (u32, u32)) -> Vec<Texel
     let positions: &[[f32; 4]] = bytemuck::cast_slice(&position);
     let tan_y = (FOV_Y as f64 * 0.5).tan();
     let tan_x = tan_y * w as f64 / h as f64;
-    let eye = cornell_view(1.0).camera.position;
     let mut out = Vec::new();
     for y in 0..h {
         for x in 0..w {
@@ -142,13 +141,36 @@ fn cpu_irradiance(texels: &[Texel], flux: &[[f64; 3]]) -> Vec<[f64; 3]> {
 /// rasterised positions, normals and albedos: Φ = ρ·P·Ω (uniform lamp), then Σ over all texels.
 #[test]
 fn flux_and_reference_match_a_cpu_computation_of_the_formulas() {
-    let gpu = gpu();
     let size = (48u32, 36u32);
-    let power = 4.0f64;
+    let view = cornell_view(4.0);
+    let (texels, _) = check_reference_against_the_cpu(&view, size);
+    assert!(texels > (size.0 * size.1 / 2) as usize, "the box fills most of the view");
+}
+
+/// The same past 65,535 senders, where a CPU device stops a loop nest without a word: the box
+/// seen from afar, low in a 320×240 view, so its lit texels lie beyond that many.
+#[test]
+fn the_reference_sums_every_sender_at_large_sizes() {
+    let size = (320u32, 240u32);
+    let mut view = cornell_view(4.0);
+    // 20° above the box's centre: the box fills rows ~190 to the bottom.
+    let eye = Vec3::new(0.0, 1.0, 8.0);
+    view.camera =
+        engine::camera::Camera::look_at(eye, Vec3::new(0.0, 1.0 + 8.0 * 20f32.to_radians().tan(), 0.0), FOV_Y);
+    let (_, beyond) = check_reference_against_the_cpu(&view, size);
+    assert!(beyond > 1000, "the test needs lit texels past the 65,535th, has {beyond}");
+}
+
+/// Checks flux and reference per texel against the CPU; returns the visible texels, and how
+/// many of them come after the 65,535th.
+fn check_reference_against_the_cpu(view: &engine::frame::ViewState, size: (u32, u32)) -> (usize, usize) {
+    let gpu = gpu();
+    let power = view.headlamp.profile.power as f64;
     let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
-    let reference = render_linear(&gpu, &mut r, &cornell_view(power as f32), "reference", size);
-    let texels = texels(&gpu, &r, size);
-    assert!(texels.len() > (size.0 * size.1 / 2) as usize, "the box fills most of the view");
+    let reference = render_linear(&gpu, &mut r, view, "reference", size);
+    let texels = texels(&gpu, &r, size, view.camera.position);
+    let beyond = texels.iter().filter(|t| t.pixel.1 * size.0 + t.pixel.0 > 65_535).count();
+    println!("{} visible texels, {beyond} of them past the 65,535th", texels.len());
     let flux_bytes = read_texture(&gpu, r.renderer.graph().physical_texture(names::FLUX).unwrap());
     let flux_gpu: &[[f32; 4]] = bytemuck::cast_slice(&flux_bytes);
     let flux: Vec<[f64; 3]> = texels.iter().map(|t| t.rho.map(|rho| rho * power * t.omega)).collect();
@@ -176,6 +198,7 @@ fn flux_and_reference_match_a_cpu_computation_of_the_formulas() {
             );
         }
     }
+    (texels.len(), beyond)
 }
 
 /// The plugin at its finest: lights split down to single texels wherever they are not tiny
@@ -193,7 +216,7 @@ fn second_bounce_matches_a_cpu_computation() {
     let view = cornell_view(power as f32);
     let mut r = renderer(&gpu, &cornell_box(), finest(2));
     let indirect = render_linear(&gpu, &mut r, &view, "indirect", size);
-    let texels = texels(&gpu, &r, size);
+    let texels = texels(&gpu, &r, size, cornell_view(1.0).camera.position);
     let flux1: Vec<[f64; 3]> = texels.iter().map(|t| t.rho.map(|rho| rho * power * t.omega)).collect();
     let e1 = cpu_irradiance(&texels, &flux1);
     let flux2: Vec<[f64; 3]> =

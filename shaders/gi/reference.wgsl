@@ -6,6 +6,10 @@
 // radiance ρ/π · E of each camera pixel is summed over all of them: O(pixels × texels), for
 // tests and `bench` at small sizes. The flux is pyramid.wgsl's, so it holds the same sources:
 // the lamp and, attached, the camera flash.
+//
+// The senders are taken in ranges, one dispatch each, summing into `sums`: a CPU device
+// (Mesa's llvmpipe) stops any loop nest after 65,535 iterations without a word, which cut the
+// sum short from 320×240 up.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -19,6 +23,16 @@
 @group(1) @binding(5) var gbuffer_normal: texture_2d<f32>;
 @group(1) @binding(6) var gbuffer_position: texture_2d<f32>;
 @group(1) @binding(7) var reference_out: texture_storage_2d<rgba32float, write>;
+// This dispatch's senders: [first, first + count); `last` = 1 on the final range.
+struct SenderRange {
+    first: u32,
+    count: u32,
+    last: u32,
+    pad: u32,
+};
+@group(1) @binding(8) var<uniform> range: SenderRange;
+// Irradiance summed so far, per receiver pixel.
+@group(1) @binding(9) var<storage, read_write> sums: array<vec4f>;
 
 struct Sender {
     position: vec3f,
@@ -44,12 +58,15 @@ fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_inde
         x = textureLoad(gbuffer_position, vec2i(pixel), 0).xyz;
     }
     var e = vec3f(0.0);
-    let count = params.flux_size.x * params.flux_size.y;
-    for (var start = 0u; start < count; start += TILE) {
+    if in_view && range.first > 0u {
+        e = sums[id.x].rgb;
+    }
+    let end = min(range.first + range.count, params.flux_size.x * params.flux_size.y);
+    for (var start = range.first; start < end; start += TILE) {
         workgroupBarrier();
         var sender: Sender;
         let k = start + local;
-        if k < count {
+        if k < end {
             let t = vec2u(k % params.flux_size.x, k / params.flux_size.x);
             sender.flux = textureLoad(light_flux, vec2i(t), 0).rgb;
             sender.position = textureLoad(light_position, vec2i(t), 0).xyz;
@@ -71,7 +88,11 @@ fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_inde
         }
     }
     if in_view {
-        let rho = textureLoad(gbuffer_albedo, vec2i(pixel), 0).rgb;
-        textureStore(reference_out, vec2i(pixel), vec4f(rho / PI * e, 1.0));
+        if range.last == 1u {
+            let rho = textureLoad(gbuffer_albedo, vec2i(pixel), 0).rgb;
+            textureStore(reference_out, vec2i(pixel), vec4f(rho / PI * e, 1.0));
+        } else {
+            sums[id.x] = vec4f(e, 0.0);
+        }
     }
 }
