@@ -97,6 +97,9 @@ pub struct BenchArgs {
     /// A GI setting, e.g. gi.split_ratio=0.3 (repeatable; see docs/gi.md for the names).
     #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
     pub settings: Vec<(String, String)>,
+    /// Render at this fraction of --size and scale up to it, as `play`'s render scale does.
+    #[arg(long, default_value_t = 1.0, value_parser = parse_render_scale)]
+    pub render_scale: f32,
     /// Render every camera with the GI off and on, alternating, and print both frame times and
     /// their ratio: the GI's cost, measured side by side.
     #[arg(long, conflicts_with = "pan")]
@@ -247,6 +250,13 @@ pub fn parse_camera(s: &str) -> Result<(Vec3, Vec3), String> {
         return Err(format!("'{s}': eye and target are the same point"));
     }
     Ok((eye, target))
+}
+
+pub fn parse_render_scale(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if (0.25..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!("'{s}': the render scale must be a number from 0.25 to 1")),
+    }
 }
 
 pub fn parse_pan_deg(s: &str) -> Result<f32, String> {

@@ -32,6 +32,34 @@ const CONTROLS_HINT_TICKS: u32 = 480;
 /// The F3 overlay reads GPU pass times this often (reading waits for the GPU), frames.
 const TIMING_EVERY: u32 = 30;
 
+/// The render scale a CPU device starts with (with [`plugin_gi::GiSettings::cpu_preset`]):
+/// the Cellar at 15 fps or more with the GI on in the default 1280×720 window, on 2 cores
+/// (`headlamp bench --size 1280x720 --render-scale 0.3 --set gi.min_rows=45`).
+pub const CPU_RENDER_SCALE: f32 = 0.3;
+
+/// What the main menu says on a CPU device: the settings that keep it playable, and whether
+/// they are the ones in use.
+fn cpu_note(adapter: &str, config: &Config) -> String {
+    let preset = plugin_gi::GiSettings::cpu_preset();
+    let chosen = format!(
+        "render scale {:.0} % and at least {} rows of indirect light (gi.min_rows)",
+        CPU_RENDER_SCALE * 100.0,
+        preset.min_rows
+    );
+    if !config.gi.enabled || (config.render_scale <= CPU_RENDER_SCALE && config.gi.min_rows <= preset.min_rows) {
+        format!(
+            "{adapter} renders on the CPU. For 15 fps or more with global illumination on, Headlamp \
+             uses the CPU settings: {chosen}. Settings > Video and F1 change them."
+        )
+    } else {
+        format!(
+            "{adapter} renders on the CPU, and these settings are heavier than its defaults \
+             ({chosen}), which keep global illumination on at 15 fps or more: set them in \
+             Settings > Video and F1."
+        )
+    }
+}
+
 /// `headlamp play`: the main menu first, the config file loaded (and saved on change).
 pub fn run(level_path: &Path) -> anyhow::Result<()> {
     let level = engine::scene::load_level(level_path)?;
@@ -39,6 +67,8 @@ pub fn run(level_path: &Path) -> anyhow::Result<()> {
     let (config, config_path, warning) = user_config();
     let sim = Simulation::new(&level, world, FixedClock::DEFAULT_TICK_RATE, crate::recording::fresh_seed());
     let mut app = GameWindow::new(level, sim, TickSource::live(&config, None), config);
+    // No file yet: the first run, whose defaults may still follow the device (see `init`).
+    app.first_run = config_path.as_ref().is_some_and(|p| !p.exists());
     app.config_path = config_path;
     app.menus = Menus::new();
     if let Some(w) = warning {
@@ -91,6 +121,8 @@ pub struct GameWindow {
     pub config: Config,
     /// Where the config is saved when a setting changes (None: not saved, e.g. in tests).
     pub config_path: Option<PathBuf>,
+    /// The player has no config file yet: on a CPU device the CPU defaults are chosen for them.
+    pub first_run: bool,
     pub menus: Menus,
     /// The input of this frame's `update`, for the menus (the window clears it before `ui`).
     input: Input,
@@ -131,6 +163,7 @@ impl GameWindow {
             gi: None,
             config,
             config_path: None,
+            first_run: false,
             menus,
             input: Input::default(),
             time: 0.0,
@@ -379,13 +412,14 @@ impl WindowApp for GameWindow {
         self.gi = Some(gi);
         self.apply_config();
         let adapter = gpu.adapter.get_info();
-        if adapter.device_type == engine::wgpu::DeviceType::Cpu && self.config.gi.enabled {
-            self.menus.show_warning(format!(
-                "{} renders on the CPU: with global illumination on, expect a frame every second \
-                 or two. Settings > Global illumination > untick \"enabled\" (or lower the render \
-                 scale) for a playable direct-lit game.",
-                adapter.name
-            ));
+        if adapter.device_type == engine::wgpu::DeviceType::Cpu {
+            if self.first_run {
+                self.config.render_scale = CPU_RENDER_SCALE;
+                self.config.gi = plugin_gi::GiSettings::cpu_preset();
+                self.apply_config();
+                self.save_config();
+            }
+            self.menus.show_warning(cpu_note(&adapter.name, &self.config));
         }
         Ok(())
     }

@@ -25,6 +25,10 @@ pub struct GiSettings {
     /// a quarter and borrows the rest from neighbours on its surface): about 4× faster on
     /// smooth surfaces. 1: every receiver evaluates every light.
     pub interleave: u32,
+    /// The fewest rows of receivers the indirect target has, whatever `resolution_scale` says
+    /// (fewer only when the view has fewer): the light's variation across a room needs about
+    /// this many. Lower is faster and blurrier; the CPU preset uses 45.
+    pub min_rows: u32,
 }
 
 impl Default for GiSettings {
@@ -37,6 +41,7 @@ impl Default for GiSettings {
             bounces: 1,
             resolution_scale: 0.25,
             interleave: 2,
+            min_rows: 90,
         }
     }
 }
@@ -67,13 +72,8 @@ impl GiSettings {
         field("split_ratio", 0.05, 4.0, false, "split a light while its size exceeds this fraction of its distance"),
         field("bounces", 1.0, 3.0, true, "number of light bounces"),
         field("resolution_scale", 0.125, 1.0, false, "indirect target size relative to the view"),
-        field(
-            "interleave",
-            1.0,
-            2.0,
-            true,
-            "2: neighbouring receivers share the lights' evaluation (faster); 1: each does all",
-        ),
+        field("interleave", 1.0, 2.0, true, "2: neighbours share the evaluation of lights (faster); 1: each does all"),
+        field("min_rows", 16.0, 360.0, true, "fewest rows of the indirect target, whatever the scale"),
     ];
 
     /// The value of a numeric field by name.
@@ -85,6 +85,7 @@ impl GiSettings {
             "bounces" => self.bounces as f64,
             "resolution_scale" => self.resolution_scale as f64,
             "interleave" => self.interleave as f64,
+            "min_rows" => self.min_rows as f64,
             _ => return None,
         })
     }
@@ -127,20 +128,24 @@ impl GiSettings {
             "bounces" => self.bounces = v.round() as u32,
             "resolution_scale" => self.resolution_scale = v as f32,
             "interleave" => self.interleave = v.round() as u32,
+            "min_rows" => self.min_rows = v.round() as u32,
             _ => {}
         }
     }
 
     /// The indirect target's size rule: `resolution_scale` of the view, but at least
-    /// [`MIN_INDIRECT_HEIGHT`] pixels high, as the light's variation across a room needs that
-    /// many receivers whatever the output size.
+    /// `min_rows` pixels high, as the light's variation across a room needs that many
+    /// receivers whatever the output size.
     pub fn indirect_size(&self) -> SizeRule {
-        SizeRule::ViewScaledAtLeast(self.resolution_scale, MIN_INDIRECT_HEIGHT)
+        SizeRule::ViewScaledAtLeast(self.resolution_scale, self.min_rows)
+    }
+
+    /// What a CPU device (Mesa's lavapipe) gets by default: fewer rows of receivers, so that
+    /// the Cellar plays at 15 fps or more with the GI on (with the game's CPU render scale).
+    pub fn cpu_preset() -> Self {
+        Self { min_rows: 45, ..Self::default() }
     }
 }
-
-/// The fewest rows of receivers the indirect target has (fewer only when the view has fewer).
-pub const MIN_INDIRECT_HEIGHT: u32 = 90;
 
 /// The pyramid level below which lights are not split: the footprint of one receiver of the
 /// indirect target (finer senders would be finer than the receivers sampling them).

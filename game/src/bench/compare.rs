@@ -46,6 +46,7 @@ pub fn compare(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSett
     let mut off = Renderer::new(gpu, &level.scene, off_plugins)?;
     for r in [&mut on, &mut off] {
         r.set_view("final").map_err(|e| anyhow!(e))?;
+        r.set_render_scale(args.render_scale);
     }
     let path = CameraPath::for_level(level);
     let mut view = initial_view(level, &ViewOverrides::default());

@@ -162,6 +162,8 @@ pub struct ErrorFigure {
 pub struct Report {
     pub level: String,
     pub size: [u32; 2],
+    /// Rendered at this fraction of `size`, then scaled up (as `play`'s render scale).
+    pub render_scale: f32,
     pub frames: usize,
     pub warmup_frames: usize,
     pub adapter: String,
@@ -217,6 +219,7 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
     let (plugins, handle) = crate::plugins(gi);
     let mut renderer = Renderer::new(gpu, &level.scene, plugins)?;
     renderer.set_view("final").map_err(|e| anyhow!(e))?;
+    renderer.set_render_scale(args.render_scale);
     let path = CameraPath::for_level(level);
     let mut view: ViewState = initial_view(level, &ViewOverrides::default());
     let n = args.frames() as usize;
@@ -269,7 +272,8 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
         full_tiles,
     });
 
-    // The GI against brute force, on the first frame's camera at a small size.
+    // The GI against brute force, on the first frame's camera at a small size, unscaled.
+    renderer.set_render_scale(1.0);
     view.camera = path.camera(0, n);
     let linear = |renderer: &mut Renderer, name: &str| -> anyhow::Result<image::Rgba32FImage> {
         renderer.set_view(name).map_err(|e| anyhow!(e))?;
@@ -297,6 +301,7 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
     Ok(Report {
         level: args.level.display().to_string(),
         size: [w, h],
+        render_scale: args.render_scale,
         frames: n,
         warmup_frames: WARMUP_FRAMES,
         adapter: info.name,
@@ -321,8 +326,8 @@ pub fn table(r: &Report) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "headlamp bench: {}, {}x{}, {} frames (+{} warm-up, not counted), on {} ({})",
-        r.level, r.size[0], r.size[1], r.frames, r.warmup_frames, r.adapter, r.backend
+        "headlamp bench: {}, {}x{} (render scale {}), {} frames (+{} warm-up, not counted), on {} ({})",
+        r.level, r.size[0], r.size[1], r.render_scale, r.frames, r.warmup_frames, r.adapter, r.backend
     );
     let _ = writeln!(s, "camera: {}", r.camera_path);
     let _ = writeln!(

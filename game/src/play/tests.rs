@@ -181,3 +181,16 @@ fn restarting_a_recording_keeps_the_first_attempt() {
     assert_eq!(crate::recording::next_attempt_path(&dir.join("run-3.replay")), dir.join("run-4.replay"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_cpu_note_says_whether_the_cpu_settings_are_in_use() {
+    let mut config =
+        Config { render_scale: CPU_RENDER_SCALE, gi: plugin_gi::GiSettings::cpu_preset(), ..Config::default() };
+    let note = cpu_note("llvmpipe", &config);
+    assert!(note.contains("uses the CPU settings: render scale 30 %") && note.contains("gi.min_rows"), "{note}");
+    config.render_scale = 1.0;
+    let note = cpu_note("llvmpipe", &config);
+    assert!(note.contains("heavier than its defaults"), "{note}");
+    config.gi.enabled = false;
+    assert!(cpu_note("llvmpipe", &config).contains("uses the CPU settings"));
+}

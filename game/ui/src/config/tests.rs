@@ -35,6 +35,7 @@ fn changed() -> Config {
         bounces: 3,
         resolution_scale: 0.3,
         interleave: 1,
+        min_rows: 60,
         ..GiSettings::default()
     };
     Config {
