@@ -64,7 +64,7 @@ impl Plugin for GiPlugin {
         ctx.add_pass(passes::BouncePass::new(device, globals, handle.clone()));
         ctx.add_pass(passes::CompositePass::new(device, globals, handle.clone(), gpu.clone()));
         ctx.add_pass(passes::LightsViewPass::new(device, globals));
-        ctx.add_pass(passes::ReferencePass::new(device, globals, gpu));
+        ctx.add_pass(passes::ReferencePass::new(device, globals, handle.clone(), gpu));
         ctx.add_view("indirect", names::INDIRECT, OutputView::Radiance);
         ctx.add_view("flux", names::FLUX_VIEW, OutputView::Color);
         ctx.add_view("lights", names::LIGHTS_VIEW, OutputView::Color);

@@ -143,7 +143,7 @@ fn cpu_irradiance(texels: &[Texel], flux: &[[f64; 3]]) -> Vec<[f64; 3]> {
 fn flux_and_reference_match_a_cpu_computation_of_the_formulas() {
     let size = (48u32, 36u32);
     let view = cornell_view(4.0);
-    let (texels, _) = check_reference_against_the_cpu(&view, size);
+    let (texels, _) = check_reference_against_the_cpu(&view, size, GiSettings::default());
     assert!(texels > (size.0 * size.1 / 2) as usize, "the box fills most of the view");
 }
 
@@ -157,21 +157,29 @@ fn the_reference_sums_every_sender_at_large_sizes() {
     let eye = Vec3::new(0.0, 1.0, 8.0);
     view.camera =
         engine::camera::Camera::look_at(eye, Vec3::new(0.0, 1.0 + 8.0 * 20f32.to_radians().tan(), 0.0), FOV_Y);
-    let (_, beyond) = check_reference_against_the_cpu(&view, size);
+    // Receivers at full resolution, so that the flux G-buffer is not subsampled either.
+    let settings = GiSettings { resolution_scale: 1.0, ..GiSettings::default() };
+    let (_, beyond) = check_reference_against_the_cpu(&view, size, settings);
     assert!(beyond > 1000, "the test needs lit texels past the 65,535th, has {beyond}");
 }
 
 /// Checks flux and reference per texel against the CPU; returns the visible texels, and how
 /// many of them come after the 65,535th.
-fn check_reference_against_the_cpu(view: &engine::frame::ViewState, size: (u32, u32)) -> (usize, usize) {
+fn check_reference_against_the_cpu(
+    view: &engine::frame::ViewState,
+    size: (u32, u32),
+    settings: GiSettings,
+) -> (usize, usize) {
     let gpu = gpu();
     let power = view.headlamp.profile.power as f64;
-    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let mut r = renderer(&gpu, &cornell_box(), settings);
+    // The flux G-buffer is the gather's input (the reference computes its own, per texel).
+    render_linear(&gpu, &mut r, view, "indirect", size);
+    let flux_bytes = read_texture(&gpu, r.renderer.graph().physical_texture(names::FLUX).unwrap());
     let reference = render_linear(&gpu, &mut r, view, "reference", size);
     let texels = texels(&gpu, &r, size, view.camera.position);
     let beyond = texels.iter().filter(|t| t.pixel.1 * size.0 + t.pixel.0 > 65_535).count();
     println!("{} visible texels, {beyond} of them past the 65,535th", texels.len());
-    let flux_bytes = read_texture(&gpu, r.renderer.graph().physical_texture(names::FLUX).unwrap());
     let flux_gpu: &[[f32; 4]] = bytemuck::cast_slice(&flux_bytes);
     let flux: Vec<[f64; 3]> = texels.iter().map(|t| t.rho.map(|rho| rho * power * t.omega)).collect();
     for (t, f) in texels.iter().zip(&flux) {

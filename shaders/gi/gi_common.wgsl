@@ -83,6 +83,21 @@ fn texel_area(omega: f32, x: vec3f, n: vec3f, lamp: vec3f) -> f32 {
     return omega * d2 / cos_theta;
 }
 
+// The flux a lamp-view texel of solid angle Ω reflects at x (albedo ρ): Φ = ρ·I(ω)·Ω, I the
+// lamp's intensity towards x, plus the camera flash while the lamp is attached (it then sits
+// where the lamp does and sees what it sees; detached, this view is the lamp's and cannot
+// tell what the flash lights, so the flash lights directly only).
+fn lamp_reflected_flux(rho: vec3f, x: vec3f, omega: f32) -> vec3f {
+    var intensity = vec3f(0.0);
+    if globals.lamp_pos.w > 0.5 {
+        intensity = lamp_intensity_towards(x);
+    }
+    if globals.params.z < 0.5 {
+        intensity += globals.camera_flash.rgb;
+    }
+    return rho * intensity * omega;
+}
+
 fn luminance(c: vec3f) -> f32 {
     return dot(c, vec3f(0.2126, 0.7152, 0.0722));
 }

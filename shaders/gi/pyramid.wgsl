@@ -3,6 +3,10 @@
 // `flux` writes levels 0–3 (each workgroup reduces its 8×8 texels in workgroup memory) and
 // `reduce` levels 4–6 from level 3 the same way.
 //
+// The base (level 0) is the lamp view subsampled to params.flux_size: each base texel takes the
+// G-buffer texel at its centre and stands for its whole block (its Ω is the block's). Attached,
+// the base is as fine as the indirect target's receivers, which never see finer senders.
+//
 // Flux per texel: Φ = ρ · I(ω) · Ω_texel (I: the lamp, plus the camera flash while attached);
 // for further bounces Φ = ρ · E · A_texel from the previous bounce's irradiance. A texel is a
 // small surface patch of area A = Ω·d²/cos θ, which the transport uses near the light.
@@ -63,7 +67,8 @@ fn reduce_three_levels(local: vec2u, group: vec2u, base: u32) {
 fn texel_node(id: vec2u) -> Node {
     var node: Node;
     node.merged = 1u;
-    let t = vec2i(id);
+    let view = vec2f(textureDimensions(gbuffer_normal));
+    let t = vec2i((vec2f(id) + 0.5) * view / vec2f(params.flux_size));
     let normal = textureLoad(gbuffer_normal, t, 0);
     let omega = texel_solid_angle(id, params.flux_size, params.lamp_tan);
     var flux = vec3f(0.0);
@@ -72,17 +77,7 @@ fn texel_node(id: vec2u) -> Node {
         let rho = textureLoad(gbuffer_albedo, t, 0).rgb;
         let area = texel_area(omega, x, normal.xyz, globals.lamp_pos.xyz);
         if params.source == 0u {
-            var intensity = vec3f(0.0);
-            if globals.lamp_pos.w > 0.5 {
-                intensity = lamp_intensity_towards(x);
-            }
-            // Attached, the camera flash sits where the lamp does and sees what it sees, so
-            // its reflected flux is ρ·I_flash·Ω_texel too. Detached, this view is the lamp's
-            // and cannot tell what the flash lights: the flash then lights directly only.
-            if globals.params.z < 0.5 {
-                intensity += globals.camera_flash.rgb;
-            }
-            flux = rho * intensity * omega;
+            flux = lamp_reflected_flux(rho, x, omega);
         } else {
             let low = vec2u(vec2f(id) * vec2f(params.indirect_size) / vec2f(params.flux_size));
             let e = textureLoad(previous_irradiance, vec2i(low), 0).rgb;
@@ -94,9 +89,9 @@ fn texel_node(id: vec2u) -> Node {
         node.extent = sqrt(area / PI);
     }
     node.flux = flux;
-    textureStore(flux_out, t, vec4f(flux, 1.0));
+    textureStore(flux_out, vec2i(id), vec4f(flux, 1.0));
     // The flux view: Φ per unit lamp solid angle relative to the lamp power, i.e. ρ·T(ω).
-    textureStore(flux_view_out, t, vec4f(flux / (omega * max(params.lamp_power, 1e-20)), 1.0));
+    textureStore(flux_view_out, vec2i(id), vec4f(flux / (omega * max(params.lamp_power, 1e-20)), 1.0));
     return node;
 }
 

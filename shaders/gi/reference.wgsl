@@ -5,7 +5,8 @@
 // resolution rises the patches shrink and the sum converges to the integral. The indirect
 // radiance ρ/π · E of each camera pixel is summed over all of them: O(pixels × texels), for
 // tests and `bench` at small sizes. The flux is pyramid.wgsl's, so it holds the same sources:
-// the lamp and, attached, the camera flash.
+// the lamp and, attached, the camera flash — but computed here for every texel of the lamp
+// view, not taken from the pyramid's (subsampled) base.
 //
 // The senders are taken in ranges, one dispatch each, summing into `sums`: a CPU device
 // (Mesa's llvmpipe) stops any loop nest after 65,535 iterations without a word, which cut the
@@ -14,8 +15,8 @@
 #include "gi_common.wgsl"
 
 @group(1) @binding(0) var<uniform> params: GiParams;
-// The senders: flux, position and normal of each lamp-view texel.
-@group(1) @binding(1) var light_flux: texture_2d<f32>;
+// The senders: albedo, position and normal of each lamp-view texel.
+@group(1) @binding(1) var light_albedo: texture_2d<f32>;
 @group(1) @binding(2) var light_position: texture_2d<f32>;
 @group(1) @binding(3) var light_normal: texture_2d<f32>;
 // The receivers: the camera G-buffer.
@@ -61,19 +62,23 @@ fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_inde
     if in_view && range.first > 0u {
         e = sums[id.x].rgb;
     }
-    let end = min(range.first + range.count, params.flux_size.x * params.flux_size.y);
+    let senders = textureDimensions(light_position);
+    let end = min(range.first + range.count, senders.x * senders.y);
     for (var start = range.first; start < end; start += TILE) {
         workgroupBarrier();
         var sender: Sender;
         let k = start + local;
         if k < end {
-            let t = vec2u(k % params.flux_size.x, k / params.flux_size.x);
-            sender.flux = textureLoad(light_flux, vec2i(t), 0).rgb;
+            let t = vec2u(k % senders.x, k / senders.x);
             sender.position = textureLoad(light_position, vec2i(t), 0).xyz;
             let n = textureLoad(light_normal, vec2i(t), 0);
             sender.normal = n.xyz;
+            let omega = texel_solid_angle(t, senders, params.lamp_tan);
+            if n.w > 0.0 {
+                let rho = textureLoad(light_albedo, vec2i(t), 0).rgb;
+                sender.flux = lamp_reflected_flux(rho, sender.position, omega);
+            }
             sender.lit = select(0.0, 1.0, n.w > 0.0 && any(sender.flux > vec3f(0.0)));
-            let omega = texel_solid_angle(t, params.flux_size, params.lamp_tan);
             sender.area = texel_area(omega, sender.position, n.xyz, globals.lamp_pos.xyz);
         }
         tile[local] = sender;

@@ -105,7 +105,7 @@ impl RenderPass for BouncePass {
     fn run(&mut self, ctx: &mut PassContext<'_>) {
         let (device, queue) = (&ctx.gpu.device, &ctx.gpu.queue);
         let settings = self.handle.settings();
-        let size = flux_size(ctx);
+        let size = flux_size(&settings, ctx);
         let low = indirect_size(&settings, ctx);
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params(&settings, ctx, 1)));
         self.pyramid.prepare(device, queue, size);

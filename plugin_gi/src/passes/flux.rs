@@ -54,9 +54,32 @@ pub(crate) fn lamp_view(attached: bool) -> LampView {
     }
 }
 
+/// Halvings of the lamp view the pyramid's base is subsampled by: attached, down to the
+/// indirect target's resolution (finer senders than the receivers would only be merged back
+/// up to that footprint by the gather), at most three; detached, none.
+const MAX_HALVINGS: u32 = 3;
+
+/// The size of the pyramid's base, the flux G-buffer: the lamp view halved `halvings` times.
+pub(crate) fn flux_rule(settings: &GiSettings, attached: bool) -> SizeRule {
+    match lamp_view(attached).size {
+        SizeRule::ViewScaled(_) => {
+            SizeRule::ViewHalvedToward(settings.resolution_scale, settings.min_rows, MAX_HALVINGS)
+        }
+        fixed => fixed,
+    }
+}
+
+/// How many times the flux G-buffer halves the lamp view this frame.
+fn halvings(settings: &GiSettings, ctx: &PassContext<'_>) -> u32 {
+    if !ctx.frame.view.headlamp.attached {
+        return 0;
+    }
+    SizeRule::halvings_toward(ctx.frame.size, settings.resolution_scale, settings.min_rows, MAX_HALVINGS)
+}
+
 /// The frame's GI parameters; `source` 0 builds from the lamp.
 pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: u32) -> GiParams {
-    let size = flux_size(ctx);
+    let size = flux_size(settings, ctx);
     let lamp = ctx.frame.lamp;
     let tan_y = (lamp.fov_y * 0.5).tan();
     GiParams {
@@ -67,16 +90,18 @@ pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: u32) 
         cos_merge: settings.merge_normal_deg.to_radians().cos(),
         merge_distance: settings.merge_distance,
         split_ratio: settings.split_ratio,
-        min_level: crate::settings::min_level(ctx.frame.size.1, indirect_size(settings, ctx).1),
+        // The receivers' footprint, in levels above the (already subsampled) base.
+        min_level: crate::settings::min_level(ctx.frame.size.1, indirect_size(settings, ctx).1)
+            .saturating_sub(halvings(settings, ctx)),
         source,
         interleave: settings.interleave,
         pad: [0; 3],
     }
 }
 
-/// Size of the flux G-buffer: the lamp view's.
-pub(crate) fn flux_size(ctx: &PassContext<'_>) -> (u32, u32) {
-    lamp_view(ctx.frame.view.headlamp.attached).size.resolve(ctx.frame.size)
+/// Size of the flux G-buffer (the pyramid's base).
+pub(crate) fn flux_size(settings: &GiSettings, ctx: &PassContext<'_>) -> (u32, u32) {
+    flux_rule(settings, ctx.frame.view.headlamp.attached).resolve(ctx.frame.size)
 }
 
 /// Size of the irradiance target.
@@ -92,8 +117,10 @@ impl RenderPass for FluxPass {
     fn declare(&self, d: &mut PassDecl) {
         let storage =
             wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
-        let lamp = lamp_view(d.context().lamp_attached);
-        let texture = |format| TextureDesc { format, size: lamp.size, usage: storage, mip_levels: 1 };
+        let attached = d.context().lamp_attached;
+        let lamp = lamp_view(attached);
+        let size = flux_rule(&self.handle.settings(), attached);
+        let texture = |format| TextureDesc { format, size, usage: storage, mip_levels: 1 };
         d.read(lamp.albedo)
             .read(lamp.normal)
             .read(lamp.position)
@@ -106,7 +133,7 @@ impl RenderPass for FluxPass {
         let settings = self.handle.settings();
         self.gpu.write_params(queue, &params(&settings, ctx, 0));
         let mut pyramid = self.pyramid.borrow_mut();
-        pyramid.prepare(device, queue, flux_size(ctx));
+        pyramid.prepare(device, queue, flux_size(&settings, ctx));
         let lamp = lamp_view(ctx.frame.view.headlamp.attached);
         let inputs = PyramidInputs {
             albedo: ctx.view(lamp.albedo),

@@ -10,7 +10,7 @@ use engine::wgpu;
 use super::flux::lamp_view;
 use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
 use crate::gpu_types::names;
-use crate::shared::GpuShared;
+use crate::shared::{GiHandle, GpuShared};
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/reference.wgsl");
 
@@ -19,6 +19,7 @@ pub const SHADER: &str = include_str!("../../../shaders/gi/reference.wgsl");
 const SENDERS_PER_DISPATCH: u32 = 16384;
 
 pub struct ReferencePass {
+    handle: GiHandle,
     gpu: Rc<GpuShared>,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
@@ -28,7 +29,12 @@ pub struct ReferencePass {
 }
 
 impl ReferencePass {
-    pub(crate) fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, gpu: Rc<GpuShared>) -> Self {
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        globals: &wgpu::BindGroupLayout,
+        handle: GiHandle,
+        gpu: Rc<GpuShared>,
+    ) -> Self {
         let mut slots = vec![S::Uniform];
         slots.extend([S::Texture; 6]);
         slots.push(S::StorageTexture(wgpu::TextureFormat::Rgba32Float));
@@ -36,7 +42,7 @@ impl ReferencePass {
         let layout = layout(device, "gi reference", &slots);
         let module = super::module(device, "gi reference", SHADER);
         let pipeline = compute_pipeline(device, "gi reference", &module, "main", &[Some(globals), Some(&layout)]);
-        Self { gpu, layout, pipeline, ranges: Vec::new(), sums: None }
+        Self { handle, gpu, layout, pipeline, ranges: Vec::new(), sums: None }
     }
 }
 
@@ -55,15 +61,17 @@ impl RenderPass for ReferencePass {
             mip_levels: 1,
         };
         let lamp = lamp_view(d.context().lamp_attached);
-        d.read(names::FLUX).read(lamp.normal).read(lamp.position);
+        d.read(lamp.albedo).read(lamp.normal).read(lamp.position);
         d.read(GBUFFER_ALBEDO).read(GBUFFER_NORMAL).read(GBUFFER_POSITION).create_texture(names::REFERENCE, desc);
     }
 
     fn run(&mut self, ctx: &mut PassContext<'_>) {
         let device = &ctx.gpu.device;
+        // Shown alone, the reference runs without the flux pass, which otherwise writes these.
+        self.gpu.write_params(&ctx.gpu.queue, &super::flux::params(&self.handle.settings(), ctx, 0));
         let lamp = lamp_view(ctx.frame.view.headlamp.attached);
         let (w, h) = ctx.frame.size;
-        let (fw, fh) = super::flux::flux_size(ctx);
+        let (fw, fh) = lamp.size.resolve(ctx.frame.size);
         let senders = fw * fh;
         let chunks = senders.div_ceil(SENDERS_PER_DISPATCH).max(1);
         while self.ranges.len() < chunks as usize {
@@ -88,7 +96,7 @@ impl RenderPass for ReferencePass {
                 &self.layout,
                 &[
                     R::Buffer(&self.gpu.params),
-                    R::View(ctx.view(names::FLUX)),
+                    R::View(ctx.view(lamp.albedo)),
                     R::View(ctx.view(lamp.position)),
                     R::View(ctx.view(lamp.normal)),
                     R::View(ctx.view(GBUFFER_ALBEDO)),
