@@ -63,6 +63,7 @@ impl Plugin for GiPlugin {
         ctx.add_pass(passes::GatherPass::new(device, globals, handle.clone(), gpu.clone(), pyramid));
         ctx.add_pass(passes::BouncePass::new(device, globals, handle.clone()));
         ctx.add_pass(passes::CompositePass::new(device, globals, handle.clone(), gpu.clone()));
+        ctx.add_pass(passes::IndirectViewPass::new(device, globals, handle.clone(), gpu.clone()));
         ctx.add_pass(passes::LightsViewPass::new(device, globals));
         ctx.add_pass(passes::ReferencePass::new(device, globals, handle.clone(), gpu));
         ctx.add_view("indirect", names::INDIRECT, OutputView::Radiance);

@@ -40,7 +40,7 @@ impl Default for GiSettings {
             merge_distance: 0.15,
             split_ratio: 0.5,
             bounces: 1,
-            resolution_scale: 0.25,
+            resolution_scale: 0.125,
             interleave: 2,
             min_rows: 90,
         }
@@ -72,7 +72,7 @@ impl GiSettings {
         field("merge_distance", 0.0, 2.0, false, "max position deviation, as a fraction of distance to the lamp"),
         field("split_ratio", 0.05, 4.0, false, "split a light while its size exceeds this fraction of its distance"),
         field("bounces", 1.0, 3.0, true, "number of light bounces"),
-        field("resolution_scale", 0.125, 1.0, false, "indirect target size relative to the view"),
+        field("resolution_scale", 0.0625, 1.0, false, "indirect target size relative to the view"),
         field("interleave", 1.0, 2.0, true, "2: neighbours share the evaluation of lights (faster); 1: each does all"),
         field("min_rows", 16.0, 360.0, true, "fewest rows of the indirect target, whatever the scale"),
     ];
@@ -201,7 +201,8 @@ mod tests {
     #[test]
     fn the_indirect_target_keeps_enough_receivers() {
         let s = GiSettings::default();
-        assert_eq!(s.indirect_size().resolve((1280, 720)), (320, 180));
+        assert_eq!(s.indirect_size().resolve((1920, 1080)), (240, 135));
+        assert_eq!(s.indirect_size().resolve((1280, 720)), (160, 90));
         assert_eq!(s.indirect_size().resolve((640, 360)), (160, 90));
         assert_eq!(s.indirect_size().resolve((160, 120)), (120, 90));
         assert_eq!(s.indirect_size().resolve((64, 48)), (64, 48));

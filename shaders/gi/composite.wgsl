@@ -1,6 +1,9 @@
-// GI composite pass: upsamples the irradiance target to full resolution with weights that
-// respect geometry (depth and normal), turns it into indirect radiance L_i = ρ/π · E, writes
-// it as the `indirect` view and adds it to the frame's HDR radiance.
+// GI composite: the indirect radiance of each full-resolution pixel from the irradiance
+// target: geometry-aware upsampling of E (depth and normal weights against the four nearest
+// samples), then L_i = ρ/π · E. Two passes draw it: `gi_composite` adds it to the frame's HDR
+// radiance (additive blending) and `gi_indirect_view` writes it alone for the `indirect` view,
+// only when something shows that. The target's alpha holds each sample's depth, so only its
+// normal is looked up.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -15,25 +18,17 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenOut {
     return fullscreen_vertex(index);
 }
 
-struct CompositeOut {
-    @location(0) indirect: vec4f,
-    @location(1) hdr: vec4f,
-};
-
-@fragment
-fn fs_main(in: FullscreenOut) -> CompositeOut {
-    let p = vec2i(in.position.xy);
-    var out: CompositeOut;
+// L_i at pixel p; w = 0 where there is no geometry.
+fn indirect_radiance(p: vec2i) -> vec4f {
     let normal = textureLoad(gbuffer_normal, p, 0);
     if normal.w == 0.0 {
-        return out;
+        return vec4f(0.0);
     }
     let depth = textureLoad(gbuffer_position, p, 0).w;
-    let full = vec2f(textureDimensions(gbuffer_normal));
+    let full = textureDimensions(gbuffer_normal);
     let low = vec2f(params.indirect_size);
-    let scale = full / low;
     // Position in the low-resolution grid, and its four nearest samples.
-    let q = in.position.xy / scale - 0.5;
+    let q = (vec2f(p) + 0.5) * low / vec2f(full) - 0.5;
     let base = vec2i(floor(q));
     let f = q - floor(q);
     var sum = vec3f(0.0);
@@ -43,28 +38,30 @@ fn fs_main(in: FullscreenOut) -> CompositeOut {
     for (var i = 0; i < 4; i++) {
         let o = vec2i(i & 1, i >> 1u);
         let s = clamp(base + o, vec2i(0), vec2i(low) - 1);
-        // The G-buffer texel the shading pass evaluated for sample s.
-        let g = vec2i((vec2f(s) + 0.5) * scale);
-        let sn = textureLoad(gbuffer_normal, g, 0);
-        let sd = textureLoad(gbuffer_position, g, 0).w;
-        let e = textureLoad(irradiance, s, 0).rgb;
+        let sample = textureLoad(irradiance, s, 0);
+        // The G-buffer texel the gather evaluated for sample s.
+        let sn = textureLoad(gbuffer_normal, receiver_texel(vec2u(s), full, params.indirect_size), 0);
         let bilinear = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
-        let depth_err = abs(sd - depth) / max(depth, 1e-3);
-        let geometric = select(0.0, pow(max(0.0, dot(sn.xyz, normal.xyz)), 8.0), sn.w > 0.0)
-            * exp(-depth_err * 20.0);
-        sum += e * bilinear * geometric;
+        let depth_err = abs(sample.w - depth) / max(depth, 1e-3);
+        let facing = max(0.0, dot(sn.xyz, normal.xyz));
+        let facing2 = facing * facing;
+        let facing4 = facing2 * facing2;
+        let geometric = select(0.0, facing4 * facing4, sn.w > 0.0) * exp(-depth_err * 20.0);
+        sum += sample.rgb * bilinear * geometric;
         total += bilinear * geometric;
         let err = depth_err + (1.0 - dot(sn.xyz, normal.xyz));
         if sn.w > 0.0 && err < nearest_err {
             nearest_err = err;
-            nearest = e;
+            nearest = sample.rgb;
         }
     }
     // Where no sample shares this surface, take the most similar one rather than bleed.
     let e = select(nearest, sum / total, total > 1e-4);
     let rho = textureLoad(gbuffer_albedo, p, 0).rgb;
-    let radiance = rho / PI * e;
-    out.indirect = vec4f(radiance, 1.0);
-    out.hdr = vec4f(radiance, 1.0);
-    return out;
+    return vec4f(rho / PI * e, 1.0);
+}
+
+@fragment
+fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
+    return indirect_radiance(vec2i(in.position.xy));
 }

@@ -49,10 +49,18 @@ const LEVEL_SHIFT: u32 = 28u;
 // (so the cut still accounts for all the flux) but not evaluated.
 const FACES_AWAY: u32 = 0x08000000u;
 const INDEX_MASK: u32 = 0x07ffffffu;
+// A blank in a front: the child a node at a level's edge does not have.
+const NO_CHILD: u32 = 0xffffffffu;
 
 var<workgroup> cut: array<u32, CUT_MAX>;
 var<workgroup> fronts: array<array<u32, CUT_MAX>, 2>;
 var<workgroup> cut_count: atomic<u32>;
+// Lights that face away from the whole tile fill the cut from its far end: they are kept (the
+// cut accounts for all the flux) but never evaluated.
+var<workgroup> away_count: atomic<u32>;
+var<workgroup> away_total: u32;
+// Set when a split found the cut full (the light was taken coarser than split_ratio asked).
+var<workgroup> cut_filled: u32;
 var<workgroup> next_count: atomic<u32>;
 // Cut entries plus pending ones: a split reserves its three extra entries first.
 var<workgroup> reserved: atomic<u32>;
@@ -69,12 +77,6 @@ var<workgroup> partials: array<vec3f, 64>;
 var<workgroup> tile_sphere: vec4f;
 var<workgroup> tile_plane: vec4f;
 var<workgroup> tile_valid: u32;
-
-// The G-buffer texel an indirect-target pixel stands for.
-fn gbuffer_texel(q: vec2u) -> vec2i {
-    let scale = vec2f(textureDimensions(gbuffer_normal)) / vec2f(params.indirect_size);
-    return vec2i((vec2f(q) + 0.5) * scale);
-}
 
 fn tile_bounds() {
     var centre = vec3f(0.0);
@@ -143,12 +145,20 @@ fn neighbour_weights(p: vec2i) -> vec4f {
 }
 
 fn accept(entry: u32) {
-    let c = atomicAdd(&cut_count, 1u);
-    cut[c] = entry;
+    if (entry & FACES_AWAY) != 0u {
+        let c = atomicAdd(&away_count, 1u);
+        cut[CUT_MAX - 1u - c] = entry;
+    } else {
+        let c = atomicAdd(&cut_count, 1u);
+        cut[c] = entry;
+    }
 }
 
 // Decides one light of the cut: leave it out, take it, or split it into its children.
 fn consider(entry: u32, parity: u32) {
+    if entry == NO_CHILD {
+        return;
+    }
     let level = entry >> LEVEL_SHIFT;
     let index = entry & INDEX_MASK;
     let node = nodes[index];
@@ -175,17 +185,20 @@ fn consider(entry: u32, parity: u32) {
             let below = table.levels[level - 1u];
             let here = table.levels[level];
             let t = vec2u((index - here.x) % here.y, (index - here.x) / here.y);
+            // One atomic for the four slots; a child past the level's edge is a blank.
+            let slot = atomicAdd(&next_count, 4u);
             for (var i = 0u; i < 4u; i++) {
                 let c = t * 2u + vec2u(i & 1u, i >> 1u);
+                var child = NO_CHILD;
                 if c.x < below.y && c.y < below.z {
-                    let slot = atomicAdd(&next_count, 1u);
-                    fronts[1u - parity][slot] = ((level - 1u) << LEVEL_SHIFT) | (below.x + c.y * below.y + c.x);
+                    child = ((level - 1u) << LEVEL_SHIFT) | (below.x + c.y * below.y + c.x);
                 }
+                fronts[1u - parity][slot + i] = child;
             }
             return;
         }
         atomicSub(&reserved, 3u);
-        atomicAdd(&stats.full, 1u);
+        cut_filled = 1u;
     }
     accept(entry);
 }
@@ -197,10 +210,13 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     let in_view = all(q < params.indirect_size);
     var x = vec3f(0.0);
     var n = vec4f(0.0);
+    var depth = 0.0;
     if in_view {
-        let g = gbuffer_texel(q);
+        let g = receiver_texel(q, textureDimensions(gbuffer_normal), params.indirect_size);
         n = textureLoad(gbuffer_normal, g, 0);
-        x = textureLoad(gbuffer_position, g, 0).xyz;
+        let position = textureLoad(gbuffer_position, g, 0);
+        x = position.xyz;
+        depth = position.w;
     }
     let valid = in_view && n.w > 0.0;
     receivers[li] = vec4f(x, select(0.0, 1.0, valid));
@@ -208,6 +224,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     workgroupBarrier();
     if li == 0u {
         tile_bounds();
+        cut_filled = 0u;
     }
     let count = workgroupUniformLoad(&tile_valid);
     var e = vec3f(0.0);
@@ -244,6 +261,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
                 front_count = seeds;
                 atomicStore(&reserved, seeds);
                 atomicStore(&cut_count, 0u);
+                atomicStore(&away_count, 0u);
                 atomicStore(&next_count, 0u);
             }
             var parity = 0u;
@@ -260,18 +278,15 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
                     front_count = atomicLoad(&next_count);
                     atomicStore(&next_count, 0u);
                     cut_total = atomicLoad(&cut_count);
+                    away_total = atomicLoad(&away_count);
                 }
                 parity = 1u - parity;
             }
             let lights = workgroupUniformLoad(&cut_total);
+            let away = workgroupUniformLoad(&away_total);
             for (var first = 0u; first < lights; first += 64u) {
                 if first + li < lights {
-                    let entry = cut[first + li];
-                    var node = nodes[entry & INDEX_MASK];
-                    if (entry & FACES_AWAY) != 0u {
-                        node.flux = vec3f(0.0);
-                    }
-                    batch[li] = node;
+                    batch[li] = nodes[cut[first + li] & INDEX_MASK];
                 }
                 workgroupBarrier();
                 let in_batch = min(64u, lights - first);
@@ -292,22 +307,27 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
                 workgroupBarrier();
             }
             if li == 0u {
-                atomicAdd(&stats.lights, lights);
+                atomicAdd(&stats.lights, lights + away);
             }
             if centre_tile {
-                for (var i = li; i < lights && shown + i < arrayLength(&centre_lights); i += 64u) {
-                    let entry = cut[i];
+                // The evaluated lights, then those facing away (from the cut's far end).
+                let all = lights + away;
+                for (var i = li; i < all && shown + i < arrayLength(&centre_lights); i += 64u) {
+                    let entry = cut[select(CUT_MAX - 1u - (i - lights), i, i < lights)];
                     let node = nodes[entry & INDEX_MASK];
-                    let away = select(0.0, 1.0, (entry & FACES_AWAY) != 0u);
+                    let faces_away = select(0.0, 1.0, (entry & FACES_AWAY) != 0u);
                     centre_lights[shown + i] =
-                        ReflectionLight(node.position, node.area, node.normal, entry >> LEVEL_SHIFT, node.flux, away);
+                        ReflectionLight(node.position, node.area, node.normal, entry >> LEVEL_SHIFT, node.flux, faces_away);
                 }
-                shown = min(shown + lights, arrayLength(&centre_lights));
+                shown = min(shown + all, arrayLength(&centre_lights));
             }
             workgroupBarrier();
         }
         if li == 0u {
             atomicAdd(&stats.tiles, 1u);
+            if cut_filled == 1u {
+                atomicAdd(&stats.full, 1u);
+            }
         }
         // The other classes from the neighbours on this surface, tent-weighted per class.
         partials[li] = own;
@@ -345,6 +365,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
             textureStore(bounce_out, vec2i(q), vec4f(e, 1.0));
             total += textureLoad(accumulate, vec2i(q), 0).rgb;
         }
-        textureStore(irradiance_out, vec2i(q), vec4f(total, 1.0));
+        // The receiver's depth rides along for the composite's upsampling.
+        textureStore(irradiance_out, vec2i(q), vec4f(total, depth));
     }
 }

@@ -98,6 +98,12 @@ fn lamp_reflected_flux(rho: vec3f, x: vec3f, omega: f32) -> vec3f {
     return rho * intensity * omega;
 }
 
+// The G-buffer texel that receiver q of an `indirect`-sized target stands for (the one at its
+// footprint's centre in a `view`-sized G-buffer).
+fn receiver_texel(q: vec2u, view: vec2u, indirect: vec2u) -> vec2i {
+    return vec2i((vec2f(q) + 0.5) * vec2f(view) / vec2f(indirect));
+}
+
 fn luminance(c: vec3f) -> f32 {
     return dot(c, vec3f(0.2126, 0.7152, 0.0722));
 }

@@ -1,5 +1,8 @@
-//! Geometry-aware upsampling of the irradiance, L_i = ρ/π · E, added to the frame's HDR radiance.
-//! With the GI off it only clears the `indirect` view, and nothing upstream runs.
+//! Geometry-aware upsampling of the irradiance, L_i = ρ/π · E (shaders/gi/composite.wgsl), drawn
+//! by two passes: `gi_composite` adds it to the frame's HDR radiance, `gi_indirect_view` writes
+//! it alone as the `indirect` view (culled unless something shows or reads that). With the GI
+//! off neither reads anything upstream: the composite only resets the figures and the view is
+//! cleared.
 
 use std::rc::Rc;
 
@@ -28,51 +31,48 @@ const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
     },
 };
 
-pub struct CompositePass {
+/// The upsampling draw, into one target.
+struct Upsample {
     handle: GiHandle,
     gpu: Rc<GpuShared>,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::RenderPipeline,
 }
 
-impl CompositePass {
-    pub(crate) fn new(
+impl Upsample {
+    fn new(
         device: &wgpu::Device,
         globals: &wgpu::BindGroupLayout,
         handle: GiHandle,
         gpu: Rc<GpuShared>,
+        label: &str,
+        blend: Option<wgpu::BlendState>,
     ) -> Self {
-        let layout = layout(device, "gi composite", &[S::Uniform, S::Texture, S::Texture, S::Texture, S::Texture]);
-        let module = super::module(device, "gi composite", SHADER);
-        let target =
-            |blend| Some(wgpu::ColorTargetState { format: HDR_FORMAT, blend, write_mask: wgpu::ColorWrites::ALL });
-        let (layouts, targets) = ([Some(globals), Some(&layout)], [target(None), target(Some(ADDITIVE))]);
-        let entries = ("vs_main", "fs_main");
-        let pipeline =
-            procedural_pipeline(device, "gi composite", &module, entries, &layouts, &targets, Default::default());
+        let layout = layout(device, label, &[S::Uniform, S::Texture, S::Texture, S::Texture, S::Texture]);
+        let module = super::module(device, label, SHADER);
+        let targets = [Some(wgpu::ColorTargetState { format: HDR_FORMAT, blend, write_mask: wgpu::ColorWrites::ALL })];
+        let pipeline = procedural_pipeline(
+            device,
+            label,
+            &module,
+            ("vs_main", "fs_main"),
+            &[Some(globals), Some(&layout)],
+            &targets,
+            Default::default(),
+        );
         Self { handle, gpu, layout, pipeline }
     }
-}
 
-impl RenderPass for CompositePass {
-    fn name(&self) -> &str {
-        "gi_composite"
+    fn enabled(&self) -> bool {
+        self.handle.settings().enabled
     }
 
-    fn declare(&self, d: &mut PassDecl) {
-        d.create_texture(names::INDIRECT, TextureDesc::target(HDR_FORMAT));
-        if self.handle.settings().enabled {
-            d.read(names::IRRADIANCE).read(GBUFFER_ALBEDO).read(GBUFFER_NORMAL).read(GBUFFER_POSITION).write(HDR);
-        }
+    fn declare_reads(d: &mut PassDecl) {
+        d.read(names::IRRADIANCE).read(GBUFFER_ALBEDO).read(GBUFFER_NORMAL).read(GBUFFER_POSITION);
     }
 
-    fn run(&mut self, ctx: &mut PassContext<'_>) {
-        let enabled = self.handle.settings().enabled;
-        if !enabled {
-            color_pass(ctx.encoder, "gi off", ctx.view(names::INDIRECT), false);
-            self.handle.0.borrow_mut().stats = Default::default();
-            return;
-        }
+    /// Draws into `target`, cleared first or blended onto.
+    fn draw(&self, ctx: &mut PassContext<'_>, label: &str, target: &str, clear: bool) {
         let group = bind(
             &ctx.gpu.device,
             &self.layout,
@@ -84,21 +84,15 @@ impl RenderPass for CompositePass {
                 R::View(ctx.view(GBUFFER_POSITION)),
             ],
         );
-        let attachment = |view| {
-            Some(wgpu::RenderPassColorAttachment {
-                view,
+        let load = if clear { wgpu::LoadOp::Clear(wgpu::Color::BLACK) } else { wgpu::LoadOp::Load };
+        let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: ctx.view(target),
                 depth_slice: None,
                 resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
-            })
-        };
-        let mut indirect = attachment(ctx.view(names::INDIRECT));
-        if let Some(a) = &mut indirect {
-            a.ops.load = wgpu::LoadOp::Clear(wgpu::Color::BLACK);
-        }
-        let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("gi composite"),
-            color_attachments: &[indirect, attachment(ctx.view(HDR))],
+                ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
+            })],
             depth_stencil_attachment: None,
             timestamp_writes: None,
             occlusion_query_set: None,
@@ -109,5 +103,76 @@ impl RenderPass for CompositePass {
         pass.set_bind_group(1, &group, &[]);
         pass.draw(0..3, 0..1);
         self.handle.0.borrow_mut().stats.draws += 1;
+    }
+}
+
+/// Adds the indirect radiance to the frame.
+pub struct CompositePass(Upsample);
+
+impl CompositePass {
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        globals: &wgpu::BindGroupLayout,
+        handle: GiHandle,
+        gpu: Rc<GpuShared>,
+    ) -> Self {
+        Self(Upsample::new(device, globals, handle, gpu, "gi composite", Some(ADDITIVE)))
+    }
+}
+
+impl RenderPass for CompositePass {
+    fn name(&self) -> &str {
+        "gi_composite"
+    }
+
+    fn declare(&self, d: &mut PassDecl) {
+        // Declared even when off (it then draws nothing), so that it runs and resets the figures.
+        d.write(HDR);
+        if self.0.enabled() {
+            Upsample::declare_reads(d);
+        }
+    }
+
+    fn run(&mut self, ctx: &mut PassContext<'_>) {
+        if !self.0.enabled() {
+            self.0.handle.0.borrow_mut().stats = Default::default();
+            return;
+        }
+        self.0.draw(ctx, "gi composite", HDR, false);
+    }
+}
+
+/// The indirect radiance alone: the `indirect` view.
+pub struct IndirectViewPass(Upsample);
+
+impl IndirectViewPass {
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        globals: &wgpu::BindGroupLayout,
+        handle: GiHandle,
+        gpu: Rc<GpuShared>,
+    ) -> Self {
+        Self(Upsample::new(device, globals, handle, gpu, "gi indirect view", None))
+    }
+}
+
+impl RenderPass for IndirectViewPass {
+    fn name(&self) -> &str {
+        "gi_indirect_view"
+    }
+
+    fn declare(&self, d: &mut PassDecl) {
+        d.create_texture(names::INDIRECT, TextureDesc::target(HDR_FORMAT));
+        if self.0.enabled() {
+            Upsample::declare_reads(d);
+        }
+    }
+
+    fn run(&mut self, ctx: &mut PassContext<'_>) {
+        if self.0.enabled() {
+            self.0.draw(ctx, "gi indirect view", names::INDIRECT, true);
+        } else {
+            color_pass(ctx.encoder, "gi off", ctx.view(names::INDIRECT), false);
+        }
     }
 }

@@ -8,7 +8,7 @@ mod lights_view;
 mod reference;
 
 pub use bounces::BouncePass;
-pub use composite::CompositePass;
+pub use composite::{CompositePass, IndirectViewPass};
 pub use flux::FluxPass;
 pub use gather::GatherPass;
 pub use lights_view::LightsViewPass;
