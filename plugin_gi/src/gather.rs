@@ -33,6 +33,40 @@ pub struct Gather {
 /// Receivers per tile side.
 pub const TILE: u32 = 8;
 
+/// The most lights a tile's cut holds, and what the gather's workgroup memory holds besides
+/// the cut and its two fronts (4 bytes per light each): the light batch, the receivers,
+/// their partial sums and a few counters.
+const CUT_MAX: u32 = 1536;
+const WORKGROUP_FIXED_BYTES: u32 = 6400;
+
+/// The gather's source with its cut as large as the device's workgroup memory allows, up to
+/// [`CUT_MAX`] (a larger cut splits lights as finely as `split_ratio` asks in more tiles).
+pub fn sized_to(source: &str, limits: wgpu::Limits) -> String {
+    let cut = cut_capacity(limits.max_compute_workgroup_storage_size);
+    source.replace(&format!("const CUT_MAX: u32 = {CUT_MAX}u;"), &format!("const CUT_MAX: u32 = {cut}u;"))
+}
+
+/// Lights per cut for `bytes` of workgroup memory: a multiple of 64, from 256 to [`CUT_MAX`].
+pub fn cut_capacity(bytes: u32) -> u32 {
+    (bytes.saturating_sub(WORKGROUP_FIXED_BYTES) / 12 / 64 * 64).clamp(256, CUT_MAX)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_cut_fits_the_workgroup_memory() {
+        assert_eq!(cut_capacity(16384), 832);
+        assert_eq!(cut_capacity(32768), CUT_MAX);
+        assert_eq!(cut_capacity(0), 256);
+        let shader = crate::passes::GATHER_SHADER;
+        assert!(shader.contains(&format!("const CUT_MAX: u32 = {CUT_MAX}u;")), "gather.wgsl's CUT_MAX is {CUT_MAX}");
+        let small = sized_to(shader, wgpu::Limits { max_compute_workgroup_storage_size: 16384, ..Default::default() });
+        assert!(small.contains("const CUT_MAX: u32 = 832u;"));
+    }
+}
+
 impl Gather {
     pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, params: wgpu::Buffer) -> Self {
         let storage = |read_only| S::Storage { read_only };
@@ -52,7 +86,7 @@ impl Gather {
                 S::StorageTexture(wgpu::TextureFormat::Rgba32Float),
             ],
         );
-        let module = module(device, "gi gather", GATHER_SHADER);
+        let module = module(device, "gi gather", &sized_to(GATHER_SHADER, device.limits()));
         let pipeline = compute_pipeline(device, "gi gather", &module, "main", &[Some(globals), Some(&layout)]);
         Self { params, layout, pipeline }
     }

@@ -38,7 +38,7 @@ impl Default for GiSettings {
             enabled: true,
             merge_normal_deg: 25.0,
             merge_distance: 0.15,
-            split_ratio: 0.5,
+            split_ratio: 0.45,
             bounces: 1,
             resolution_scale: 0.125,
             interleave: 2,

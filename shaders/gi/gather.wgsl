@@ -42,7 +42,8 @@ struct Stats {
 
 const TILE: u32 = 8u;
 // Lights one tile's cut may hold (and pending splits); top-level lights are taken in chunks.
-const CUT_MAX: u32 = 768u;
+// Sized to the device's workgroup memory by gather.rs (this is the most; 832 fit 16 KiB).
+const CUT_MAX: u32 = 1536u;
 const CHUNK: u32 = 256u;
 const LEVEL_SHIFT: u32 = 28u;
 // Marks a light of the cut that faces away from every receiver of the tile: kept in the cut

@@ -87,7 +87,7 @@ fn the_file_is_readable_toml() {
     {
         assert!(text.contains(expected), "{expected:?} in\n{text}");
     }
-    for expected in ["[gi]\n", "enabled = true\n", "split_ratio = 0.5\n", "resolution_scale = 0.125\n"] {
+    for expected in ["[gi]\n", "enabled = true\n", "split_ratio = 0.45\n", "resolution_scale = 0.125\n"] {
         assert!(text.contains(expected), "{expected:?} in\n{text}");
     }
     assert!(text.parse::<toml::Table>().is_ok());
