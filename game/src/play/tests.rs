@@ -187,7 +187,7 @@ fn the_cpu_note_says_whether_the_cpu_settings_are_in_use() {
     let mut config =
         Config { render_scale: CPU_RENDER_SCALE, gi: plugin_gi::GiSettings::cpu_preset(), ..Config::default() };
     let note = cpu_note("llvmpipe", &config);
-    assert!(note.contains("uses the CPU settings: render scale 30 %") && note.contains("gi.min_rows"), "{note}");
+    assert!(note.contains("uses the CPU settings: render scale 40 %") && note.contains("gi.min_rows"), "{note}");
     config.render_scale = 1.0;
     let note = cpu_note("llvmpipe", &config);
     assert!(note.contains("heavier than its defaults"), "{note}");
