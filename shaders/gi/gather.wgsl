@@ -126,23 +126,22 @@ fn light_class(p: vec2i) -> u32 {
     return u32(p.x & 1) + 2u * u32(p.y & 1);
 }
 
-// Tent weights of p's neighbours on p's surface, per class (x: class 0 … w: class 3).
-fn neighbour_weights(p: vec2i) -> vec4f {
-    var w = vec4f(0.0);
+// Which of p's 3×3 neighbours (bit (dy + 1) * 3 + dx + 1) lie on p's surface.
+fn same_surface_mask(p: vec2i) -> u32 {
+    var mask = 0u;
     let a = u32(p.y * 8 + p.x);
-    for (var dy = -1; dy <= 1; dy++) {
-        for (var dx = -1; dx <= 1; dx++) {
-            let q = p + vec2i(dx, dy);
-            if (dx == 0 && dy == 0) || any(q < vec2i(0)) || any(q > vec2i(7)) {
-                continue;
-            }
-            if same_surface(a, u32(q.y * 8 + q.x)) {
-                let tent = select(1.0, 0.5, dx != 0) * select(1.0, 0.5, dy != 0);
-                w[light_class(q)] += tent;
-            }
+    for (var k = 0u; k < 9u; k++) {
+        let q = p + vec2i(i32(k % 3u) - 1, i32(k / 3u) - 1);
+        if k != 4u && all(q >= vec2i(0)) && all(q <= vec2i(7)) && same_surface(a, u32(q.y * 8 + q.x)) {
+            mask |= 1u << k;
         }
     }
-    return w;
+    return mask;
+}
+
+// The tent weight of neighbour k of the 3×3 (½ along each axis it is off the centre).
+fn tent(k: u32) -> f32 {
+    return select(1.0, 0.5, k % 3u != 1u) * select(1.0, 0.5, k / 3u != 1u);
 }
 
 fn accept(entry: u32) {
@@ -236,9 +235,15 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     let own_class = select(0u, light_class(p), interleaved);
     let stride = select(1u, 4u, interleaved);
     var weights = vec4f(0.0);
+    var similar = 0u;
     var lacking = 0u;
     if valid && interleaved {
-        weights = neighbour_weights(p);
+        similar = same_surface_mask(p);
+        for (var k = 0u; k < 9u; k++) {
+            if ((similar >> k) & 1u) != 0u {
+                weights[light_class(p + vec2i(i32(k % 3u) - 1, i32(k / 3u) - 1))] += tent(k);
+            }
+        }
         for (var c = 0u; c < 4u; c++) {
             if c != own_class && weights[c] <= 0.0 {
                 lacking |= 1u << c;
@@ -335,17 +340,10 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
         workgroupBarrier();
         if valid && interleaved {
             var borrowed = array<vec3f, 4>(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
-            for (var dy = -1; dy <= 1; dy++) {
-                for (var dx = -1; dx <= 1; dx++) {
-                    let q = p + vec2i(dx, dy);
-                    if (dx == 0 && dy == 0) || any(q < vec2i(0)) || any(q > vec2i(7)) {
-                        continue;
-                    }
-                    let b = u32(q.y * 8 + q.x);
-                    if same_surface(li, b) {
-                        let tent = select(1.0, 0.5, dx != 0) * select(1.0, 0.5, dy != 0);
-                        borrowed[light_class(q)] += partials[b] * tent;
-                    }
+            for (var k = 0u; k < 9u; k++) {
+                if ((similar >> k) & 1u) != 0u {
+                    let q = p + vec2i(i32(k % 3u) - 1, i32(k / 3u) - 1);
+                    borrowed[light_class(q)] += partials[u32(q.y * 8 + q.x)] * tent(k);
                 }
             }
             for (var c = 0u; c < 4u; c++) {
