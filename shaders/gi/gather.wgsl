@@ -126,12 +126,17 @@ fn light_class(p: vec2i) -> u32 {
     return u32(p.x & 1) + 2u * u32(p.y & 1);
 }
 
+// Neighbour k of p's 3×3 (k = (dy + 1) * 3 + dx + 1; 4 is p itself).
+fn neighbour(p: vec2i, k: u32) -> vec2i {
+    return p + vec2i(i32(k % 3u) - 1, i32(k / 3u) - 1);
+}
+
 // Which of p's 3×3 neighbours (bit (dy + 1) * 3 + dx + 1) lie on p's surface.
 fn same_surface_mask(p: vec2i) -> u32 {
     var mask = 0u;
     let a = u32(p.y * 8 + p.x);
     for (var k = 0u; k < 9u; k++) {
-        let q = p + vec2i(i32(k % 3u) - 1, i32(k / 3u) - 1);
+        let q = neighbour(p, k);
         if k != 4u && all(q >= vec2i(0)) && all(q <= vec2i(7)) && same_surface(a, u32(q.y * 8 + q.x)) {
             mask |= 1u << k;
         }
@@ -241,7 +246,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
         similar = same_surface_mask(p);
         for (var k = 0u; k < 9u; k++) {
             if ((similar >> k) & 1u) != 0u {
-                weights[light_class(p + vec2i(i32(k % 3u) - 1, i32(k / 3u) - 1))] += tent(k);
+                weights[light_class(neighbour(p, k))] += tent(k);
             }
         }
         for (var c = 0u; c < 4u; c++) {
@@ -342,7 +347,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
             var borrowed = array<vec3f, 4>(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
             for (var k = 0u; k < 9u; k++) {
                 if ((similar >> k) & 1u) != 0u {
-                    let q = p + vec2i(i32(k % 3u) - 1, i32(k / 3u) - 1);
+                    let q = neighbour(p, k);
                     borrowed[light_class(q)] += partials[u32(q.y * 8 + q.x)] * tent(k);
                 }
             }
