@@ -51,22 +51,6 @@ pub fn cut_capacity(bytes: u32) -> u32 {
     (bytes.saturating_sub(WORKGROUP_FIXED_BYTES) / 12 / 64 * 64).clamp(256, CUT_MAX)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_cut_fits_the_workgroup_memory() {
-        assert_eq!(cut_capacity(16384), 832);
-        assert_eq!(cut_capacity(32768), CUT_MAX);
-        assert_eq!(cut_capacity(0), 256);
-        let shader = crate::passes::GATHER_SHADER;
-        assert!(shader.contains(&format!("const CUT_MAX: u32 = {CUT_MAX}u;")), "gather.wgsl's CUT_MAX is {CUT_MAX}");
-        let small = sized_to(shader, wgpu::Limits { max_compute_workgroup_storage_size: 16384, ..Default::default() });
-        assert!(small.contains("const CUT_MAX: u32 = 832u;"));
-    }
-}
-
 impl Gather {
     pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, params: wgpu::Buffer) -> Self {
         let storage = |read_only| S::Storage { read_only };
@@ -125,5 +109,21 @@ impl Gather {
         pass.set_bind_group(1, &group, &[]);
         pass.dispatch_workgroups(size.0.div_ceil(TILE), size.1.div_ceil(TILE), 1);
         1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_cut_fits_the_workgroup_memory() {
+        assert_eq!(cut_capacity(16384), 832);
+        assert_eq!(cut_capacity(32768), CUT_MAX);
+        assert_eq!(cut_capacity(0), 256);
+        let shader = crate::passes::GATHER_SHADER;
+        assert!(shader.contains(&format!("const CUT_MAX: u32 = {CUT_MAX}u;")), "gather.wgsl's CUT_MAX is {CUT_MAX}");
+        let small = sized_to(shader, wgpu::Limits { max_compute_workgroup_storage_size: 16384, ..Default::default() });
+        assert!(small.contains("const CUT_MAX: u32 = 832u;"));
     }
 }

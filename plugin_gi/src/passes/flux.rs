@@ -61,11 +61,10 @@ const MAX_HALVINGS: u32 = 3;
 
 /// The size of the pyramid's base, the flux G-buffer: the lamp view halved `halvings` times.
 pub(crate) fn flux_rule(settings: &GiSettings, attached: bool) -> SizeRule {
-    match lamp_view(attached).size {
-        SizeRule::ViewScaled(_) => {
-            SizeRule::ViewHalvedToward(settings.resolution_scale, settings.min_rows, MAX_HALVINGS)
-        }
-        fixed => fixed,
+    if attached {
+        SizeRule::ViewHalvedToward(settings.resolution_scale, settings.min_rows, MAX_HALVINGS)
+    } else {
+        lamp_view(false).size
     }
 }
 

@@ -36,7 +36,6 @@ fn changed() -> Config {
         resolution_scale: 0.3,
         interleave: 1,
         min_rows: 60,
-        ..GiSettings::default()
     };
     Config {
         mouse_sensitivity: 1.37,
