@@ -40,6 +40,13 @@ pub struct GiParams {
     /// 2: the gather's receivers share the cut in a 2×2 pattern; 1: each evaluates all of it.
     pub interleave: u32,
     pub pad: [u32; 3],
+    /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin, its
+    /// forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a texel's
+    /// corner rays follow from its index: each texel's footprint for the near field.
+    pub view_origin: [f32; 4],
+    pub view_forward: [f32; 4],
+    pub view_right: [f32; 4],
+    pub view_up: [f32; 4],
 }
 
 /// A reflection light as the gather used it: a Lambertian patch of area `area`,

@@ -3,7 +3,8 @@
 mod common;
 
 use common::*;
-use engine::glam::{Vec3, Vec4};
+use engine::camera::Camera;
+use engine::glam::{DVec3, Vec3, Vec4};
 use engine::headless::read_texture;
 use plugin_gi::{names, readback, GiSettings};
 
@@ -72,10 +73,12 @@ struct Texel {
     /// Ω·d²/max(cos θ, 0.01).
     omega: f64,
     area: f64,
+    /// The texel's footprint: where its four corner rays meet the plane of its sample.
+    corners: [DVec3; 4],
 }
 
 /// The visible texels of the last frame, read back from the G-buffer.
-fn texels(gpu: &engine::gpu::Gpu, r: &GiRender, (w, h): (u32, u32), eye: Vec3) -> Vec<Texel> {
+fn texels(gpu: &engine::gpu::Gpu, r: &GiRender, (w, h): (u32, u32), camera: &Camera) -> Vec<Texel> {
     let graph = r.renderer.graph();
     let texture = |name: &str| read_texture(gpu, graph.physical_texture(name).unwrap_or_else(|| panic!("{name}")));
     let (albedo, normal, position) = (
@@ -89,6 +92,12 @@ fn texels(gpu: &engine::gpu::Gpu, r: &GiRender, (w, h): (u32, u32), eye: Vec3) -
     let positions: &[[f32; 4]] = bytemuck::cast_slice(&position);
     let tan_y = (FOV_Y as f64 * 0.5).tan();
     let tan_x = tan_y * w as f64 / h as f64;
+    let eye = camera.position;
+    let rotation = camera.rotation.as_dquat();
+    let (right, up, forward) = (rotation * DVec3::X, rotation * DVec3::Y, rotation * DVec3::NEG_Z);
+    // The ray through a point of the image, (0, 0) its top left corner, in pixels.
+    let ray =
+        |u: f64, v: f64| forward + (u / w as f64 * 2.0 - 1.0) * tan_x * right + (1.0 - v / h as f64 * 2.0) * tan_y * up;
     let mut out = Vec::new();
     for y in 0..h {
         for x in 0..w {
@@ -106,15 +115,57 @@ fn texels(gpu: &engine::gpu::Gpu, r: &GiRender, (w, h): (u32, u32), eye: Vec3) -
             let omega = 4.0 * tan_x * tan_y / (w * h) as f64 / (r2 * r2.sqrt());
             let d2 = (p - eye).as_dvec3().length_squared();
             let cos = normal.as_dvec3().dot((eye - p).as_dvec3() / d2.sqrt()).max(0.01);
-            out.push(Texel { pixel: (x, y), x: p, n: normal, rho: [a[0], a[1], a[2]], omega, area: omega * d2 / cos });
+            let height = (p - eye).as_dvec3().dot(normal.as_dvec3());
+            let corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(cu, cv)| {
+                let dir = ray(x as f64 + cu, y as f64 + cv);
+                let slope = dir.dot(normal.as_dvec3()).min(-0.01 * dir.length());
+                eye.as_dvec3() + dir * (height / slope)
+            });
+            out.push(Texel {
+                pixel: (x, y),
+                x: p,
+                n: normal,
+                rho: [a[0], a[1], a[2]],
+                omega,
+                area: omega * d2 / cos,
+                corners,
+            });
         }
     }
     out
 }
 
+/// Lambert's point-to-polygon form factor at x (normal n) of the quad `q`, clipped to x's
+/// upper hemisphere: 1/2π · Σ over edges of the angle each subtends times n · its plane's normal.
+fn quad_form_factor(q: &[DVec3; 4], x: DVec3, n: DVec3) -> f64 {
+    let mut poly = Vec::with_capacity(5);
+    for i in 0..4 {
+        let (a, b) = (q[i] - x, q[(i + 1) % 4] - x);
+        let (ha, hb) = (a.dot(n), b.dot(n));
+        if ha >= 0.0 {
+            poly.push(a);
+        }
+        if (ha >= 0.0) != (hb >= 0.0) {
+            poly.push(a + (b - a) * (ha / (ha - hb)));
+        }
+    }
+    let mut f = 0.0;
+    for i in 0..poly.len() {
+        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+        let c = a.cross(b);
+        let s = c.length();
+        if s > 1e-15 * a.length() * b.length() {
+            f += s.atan2(a.dot(b)) * n.dot(c) / s;
+        }
+    }
+    f.abs() / (2.0 * std::f64::consts::PI)
+}
+
 /// E at every texel from emitters of the given flux, each the small patch its texel covers:
-/// E = Φ/π · cos · cos / (d² + A/π), summed in f64.
+/// E = Φ/π · cos · cos / (d² + A/π), and within 8 patch radii Φ/A times the form factor of
+/// the texel's footprint; summed in f64.
 fn cpu_irradiance(texels: &[Texel], flux: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    use std::f64::consts::PI;
     texels
         .iter()
         .map(|t| {
@@ -125,11 +176,20 @@ fn cpu_irradiance(texels: &[Texel], flux: &[[f64; 3]]) -> Vec<[f64; 3]> {
                 if d2 == 0.0 {
                     continue;
                 }
-                let wv = v / d2.sqrt();
-                let g = s.n.as_dvec3().dot(wv).max(0.0) * t.n.as_dvec3().dot(-wv).max(0.0)
-                    / (d2 + s.area / std::f64::consts::PI);
+                let g = if d2 < 64.0 * s.area / PI {
+                    let q = &s.corners;
+                    let area = 0.5 * (q[2] - q[0]).cross(q[3] - q[1]).length();
+                    if v.dot(s.n.as_dvec3()) <= 0.01 * area.sqrt() {
+                        0.0
+                    } else {
+                        PI / area * quad_form_factor(q, t.x.as_dvec3(), t.n.as_dvec3())
+                    }
+                } else {
+                    let wv = v / d2.sqrt();
+                    s.n.as_dvec3().dot(wv).max(0.0) * t.n.as_dvec3().dot(-wv).max(0.0) / (d2 + s.area / PI)
+                };
                 for c in 0..3 {
-                    e[c] += f[c] / std::f64::consts::PI * g;
+                    e[c] += f[c] / PI * g;
                 }
             }
             e
@@ -177,7 +237,7 @@ fn check_reference_against_the_cpu(
     render_linear(&gpu, &mut r, view, "indirect", size);
     let flux_bytes = read_texture(&gpu, r.renderer.graph().physical_texture(names::FLUX).unwrap());
     let reference = render_linear(&gpu, &mut r, view, "reference", size);
-    let texels = texels(&gpu, &r, size, view.camera.position);
+    let texels = texels(&gpu, &r, size, &view.camera);
     let beyond = texels.iter().filter(|t| t.pixel.1 * size.0 + t.pixel.0 > 65_535).count();
     println!("{} visible texels, {beyond} of them past the 65,535th", texels.len());
     let flux_gpu: &[[f32; 4]] = bytemuck::cast_slice(&flux_bytes);
@@ -224,7 +284,7 @@ fn second_bounce_matches_a_cpu_computation() {
     let view = cornell_view(power as f32);
     let mut r = renderer(&gpu, &cornell_box(), finest(2));
     let indirect = render_linear(&gpu, &mut r, &view, "indirect", size);
-    let texels = texels(&gpu, &r, size, cornell_view(1.0).camera.position);
+    let texels = texels(&gpu, &r, size, &cornell_view(1.0).camera);
     let flux1: Vec<[f64; 3]> = texels.iter().map(|t| t.rho.map(|rho| rho * power * t.omega)).collect();
     let e1 = cpu_irradiance(&texels, &flux1);
     let flux2: Vec<[f64; 3]> =
@@ -337,4 +397,49 @@ fn a_lamp_facing_the_void_lights_nothing_indirectly() {
     // Turned back towards the box, the same renderer lights it again.
     let lit = render_linear(&gpu, &mut r, &cornell_view(4.0), "indirect", SIZE);
     assert!(lit.pixels().any(|p| p[0] > 0.0));
+}
+
+/// The reference converges as the lamp view's resolution rises: rendered at 3× and 9× the
+/// size, the pixel at the centre of each 3×3 (9×9) block looks along the same ray as the
+/// coarse pixel, so the receivers are the same points and only the senders get finer. The
+/// finest is taken as the truth: the 3× picture must lie much closer to it than the 1× one.
+/// Receivers at a silhouette or a fold are left out (rasterised at three sizes, a ray that
+/// grazes an edge may land on either side of it).
+#[test]
+fn the_reference_converges_as_the_lamp_view_gets_finer() {
+    let gpu = gpu();
+    let base = (24u32, 18u32);
+    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let view = cornell_view(4.0);
+    let pictures: Vec<image::Rgba32FImage> =
+        [1, 3, 9].iter().map(|&k| render_linear(&gpu, &mut r, &view, "reference", (base.0 * k, base.1 * k))).collect();
+    // The pixel of picture `level` (k = 3^level) on the ray of coarse pixel (x, y).
+    let at = |level: usize, x: u32, y: u32, dx: i32, dy: i32| -> [f32; 4] {
+        let k = 3u32.pow(level as u32);
+        let (px, py) = ((x * k + k / 2) as i32 + dx, (y * k + k / 2) as i32 + dy);
+        pictures[level].get_pixel(px as u32, py as u32).0
+    };
+    let lum = |p: [f32; 4]| 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64;
+    let (mut coarse, mut middle, mut truth, mut kept, mut lit) = (0.0, 0.0, 0.0, 0, 0);
+    for y in 0..base.1 {
+        for x in 0..base.0 {
+            let centre = lum(at(2, x, y, 0, 0));
+            lit += usize::from(centre > 0.0);
+            // A smooth neighbourhood in the finest picture: no silhouette, fold or empty pixel.
+            let smooth = centre > 0.0
+                && (-1..=1).all(|dy| (-1..=1).all(|dx| (lum(at(2, x, y, dx, dy)) - centre).abs() <= 0.1 * centre));
+            if !smooth {
+                continue;
+            }
+            kept += 1;
+            coarse += (lum(at(0, x, y, 0, 0)) - centre).powi(2);
+            middle += (lum(at(1, x, y, 0, 0)) - centre).powi(2);
+            truth += centre * centre;
+        }
+    }
+    let (coarse, middle) = ((coarse / truth).sqrt(), (middle / truth).sqrt());
+    println!("{kept} of {lit} lit receivers; relative L2 from the 9× senders: 1× {coarse:.4}, 3× {middle:.4}");
+    assert!(kept * 4 > lit * 3, "most receivers must be kept, kept {kept} of {lit}");
+    assert!(coarse > 0.0 && middle < 0.5 * coarse, "no convergence: 1× {coarse:.4}, 3× {middle:.4}");
+    assert!(middle < 0.02, "3× senders lie {middle:.4} from 9×");
 }

@@ -51,6 +51,12 @@ struct GiParams {
     pad0: u32,
     pad1: u32,
     pad2: u32,
+    // The frame the lamp view was rendered from: origin, forward axis, and right and up axes
+    // scaled by lamp_tan, so a texel's corner rays follow from its index.
+    view_origin: vec4f,
+    view_forward: vec4f,
+    view_right: vec4f,
+    view_up: vec4f,
 };
 
 const PYRAMID_LEVELS: u32 = 7u;
@@ -118,6 +124,74 @@ fn patch_irradiance(flux: vec3f, area: f32, p: vec3f, n_r: vec3f, x: vec3f, n_x:
     let w = v * inverseSqrt(max(d2, 1e-20));
     let g = max(0.0, dot(n_r, w)) * max(0.0, dot(n_x, -w)) / (d2 + area / PI + 1e-20);
     return flux * (g / PI);
+}
+
+// Within this many patch radii of a receiver, the reference integrates a texel's light over
+// the texel's footprint (quad_irradiance) rather than taking the patch form from its centre:
+// next to a sender (where walls meet) the centre form depends on where the texel grid happens
+// to fall and converges slowly; farther away its error falls as (size / distance)².
+const NEAR_RADII: f32 = 8.0;
+
+// The surface patch that texel t of a `size` lamp view covers: where its four corner rays meet
+// the plane of its sample (p, n), in order around it. Grazing corner rays are held to the
+// MIN_AREA_COS slope, as texel_area holds the area.
+fn texel_footprint(params: GiParams, t: vec2u, size: vec2u, p: vec3f, n: vec3f) -> array<vec3f, 4> {
+    let o = params.view_origin.xyz;
+    let height = dot(p - o, n);
+    var corners: array<vec3f, 4>;
+    for (var k = 0u; k < 4u; k++) {
+        let c = vec2f(f32(k == 1u || k == 2u), f32(k >= 2u));
+        let uv = (vec2f(t) + c) / vec2f(size);
+        let dir = params.view_forward.xyz + (uv.x * 2.0 - 1.0) * params.view_right.xyz
+            + (1.0 - uv.y * 2.0) * params.view_up.xyz;
+        let slope = min(dot(dir, n), -MIN_AREA_COS * length(dir));
+        corners[k] = o + dir * (height / slope);
+    }
+    return corners;
+}
+
+// Irradiance at x (normal n_x) from a Lambertian quad q (normal n_r) that spreads flux Φ evenly:
+// E = Φ/A · F, F the point-to-polygon form factor of the quad's part above x's plane
+// (Lambert's formula, F = 1/2π · Σ over edges of the angle they subtend times n_x · their
+// plane's normal). Exact however close x lies, where the patch form below is not.
+fn quad_irradiance(flux: vec3f, q: array<vec3f, 4>, n_r: vec3f, x: vec3f, n_x: vec3f) -> vec3f {
+    let area = 0.5 * length(cross(q[2] - q[0], q[3] - q[1]));
+    // A receiver (all but) on the patch's plane gets nothing; the test is against a hundredth
+    // of the patch's size, since at a rise of rounding noise the clip below would be decided
+    // by the (half-precision) normals' noise instead.
+    if area <= 0.0 || dot(x - q[0], n_r) <= 0.01 * sqrt(area) {
+        return vec3f(0.0);
+    }
+    // The quad relative to x, clipped to x's upper hemisphere (at most five corners).
+    var poly: array<vec3f, 8>;
+    var m = 0u;
+    for (var i = 0u; i < 4u; i++) {
+        let a = q[i] - x;
+        let b = q[(i + 1u) % 4u] - x;
+        let ha = dot(a, n_x);
+        let hb = dot(b, n_x);
+        if ha >= 0.0 {
+            poly[m] = a;
+            m++;
+        }
+        if (ha >= 0.0) != (hb >= 0.0) {
+            poly[m] = a + (b - a) * (ha / (ha - hb));
+            m++;
+        }
+    }
+    var f = 0.0;
+    for (var i = 0u; i < m; i++) {
+        let a = poly[i];
+        let b = poly[(i + 1u) % m];
+        let c = cross(a, b);
+        let s = length(c);
+        let la = length(a);
+        let lb = length(b);
+        if s > 1e-12 * la * lb {
+            f += atan2(s, dot(a, b)) * dot(n_x, c) / s;
+        }
+    }
+    return flux * (abs(f) / (2.0 * PI * area));
 }
 
 // The merge filter: one node from four children (those without flux count for nothing).

@@ -11,6 +11,10 @@
 // The senders are taken in ranges, one dispatch each, summing into `sums`: a CPU device
 // (Mesa's llvmpipe) stops any loop nest after 65,535 iterations without a word, which cut the
 // sum short from 320×240 up.
+//
+// Within NEAR_RADII of a receiver a sender is integrated over its footprint instead (the
+// point-to-quad form factor): where walls meet, the centre form would depend on where the
+// texel grid falls, and converges only slowly.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -46,6 +50,25 @@ struct Sender {
 
 const TILE: u32 = 64u;
 var<workgroup> tile: array<Sender, 64>;
+// Each sender's footprint, for receivers in its near field.
+var<workgroup> footprints: array<array<vec3f, 4>, 64>;
+
+// For the senders marked in `near`: their footprint's irradiance at x minus the patch form
+// already summed.
+fn near_field_correction(near: vec2u, x: vec3f, n: vec3f) -> vec3f {
+    var e = vec3f(0.0);
+    for (var half = 0u; half < 2u; half++) {
+        var bits = near[half];
+        while bits != 0u {
+            let i = half * 32u + firstTrailingBit(bits);
+            bits &= bits - 1u;
+            let s = tile[i];
+            e += quad_irradiance(s.flux, footprints[i], s.normal, x, n)
+                - patch_irradiance(s.flux, s.area, s.position, s.normal, x, n);
+        }
+    }
+    return e;
+}
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
@@ -80,16 +103,25 @@ fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_inde
             }
             sender.lit = select(0.0, 1.0, n.w > 0.0 && any(sender.flux > vec3f(0.0)));
             sender.area = texel_area(omega, sender.position, n.xyz, globals.lamp_pos.xyz);
+            footprints[local] = texel_footprint(params, t, senders, sender.position, n.xyz);
         }
         tile[local] = sender;
         workgroupBarrier();
         if in_view && normal.w > 0.0 {
+            // The senders in this receiver's near field, as bits: corrected in a loop of their
+            // own, since a CPU device runs both sides of a branch that any lane takes.
+            var near = vec2u(0u);
             for (var i = 0u; i < TILE; i++) {
                 let s = tile[i];
                 if s.lit > 0.0 {
                     e += patch_irradiance(s.flux, s.area, s.position, s.normal, x, normal.xyz);
+                    let d = x - s.position;
+                    if dot(d, d) < NEAR_RADII * NEAR_RADII * s.area / PI {
+                        near[i / 32u] |= 1u << (i % 32u);
+                    }
                 }
             }
+            e += near_field_correction(near, x, normal.xyz);
         }
     }
     if in_view {

@@ -3,6 +3,7 @@
 use std::cell::RefCell;
 use std::rc::Rc;
 
+use engine::glam::Vec3;
 use engine::graph::{PassContext, PassDecl, RenderPass, SizeRule, TextureDesc};
 use engine::passes::names::{
     GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION, LAMP_ALBEDO, LAMP_NORMAL, LAMP_POSITION,
@@ -95,6 +96,10 @@ pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: u32) 
         source,
         interleave: settings.interleave,
         pad: [0; 3],
+        view_origin: lamp.position.extend(1.0).to_array(),
+        view_forward: (lamp.rotation * Vec3::NEG_Z).extend(0.0).to_array(),
+        view_right: (lamp.rotation * Vec3::X * tan_y * lamp.aspect).extend(0.0).to_array(),
+        view_up: (lamp.rotation * Vec3::Y * tan_y).extend(0.0).to_array(),
     }
 }
 
