@@ -42,7 +42,7 @@ pub struct GiParams {
     pub pad: [u32; 3],
     /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin, its
     /// forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a texel's
-    /// corner rays follow from its index: each texel's footprint for the near field.
+    /// corner rays follow from its index: the reference's footprints in its near field.
     pub view_origin: [f32; 4],
     pub view_forward: [f32; 4],
     pub view_right: [f32; 4],

@@ -13,8 +13,7 @@
 // sum short from 320×240 up.
 //
 // Within NEAR_RADII of a receiver a sender is integrated over its footprint instead (the
-// point-to-quad form factor): where walls meet, the centre form would depend on where the
-// texel grid falls, and converges only slowly.
+// point-to-quad form factor).
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -47,6 +46,74 @@ struct Sender {
     flux: vec3f,
     pad: f32,
 };
+
+// Within this many patch radii of a receiver, a sender's light is integrated over its texel's
+// footprint (quad_irradiance) rather than taken in the patch form from its centre: next to a
+// sender (where walls meet) the centre form depends on where the texel grid happens to fall
+// and converges slowly; farther away its error falls as (size / distance)².
+const NEAR_RADII: f32 = 8.0;
+
+// The surface patch that texel t of a `size` lamp view covers: where its four corner rays meet
+// the plane of its sample (p, n), in order around it. Grazing corner rays are held to the
+// MIN_AREA_COS slope, as texel_area holds the area.
+fn texel_footprint(t: vec2u, size: vec2u, p: vec3f, n: vec3f) -> array<vec3f, 4> {
+    let o = params.view_origin.xyz;
+    let height = dot(p - o, n);
+    var corners: array<vec3f, 4>;
+    for (var k = 0u; k < 4u; k++) {
+        let c = vec2f(f32(k == 1u || k == 2u), f32(k >= 2u));
+        let uv = (vec2f(t) + c) / vec2f(size);
+        let dir = params.view_forward.xyz + (uv.x * 2.0 - 1.0) * params.view_right.xyz
+            + (1.0 - uv.y * 2.0) * params.view_up.xyz;
+        let slope = min(dot(dir, n), -MIN_AREA_COS * length(dir));
+        corners[k] = o + dir * (height / slope);
+    }
+    return corners;
+}
+
+// Irradiance at x (normal n_x) from a Lambertian quad q (normal n_r) that spreads flux Φ evenly:
+// E = Φ/A · F, F the point-to-polygon form factor of the quad's part above x's plane
+// (Lambert's formula, F = 1/2π · Σ over edges of the angle they subtend times n_x · their
+// plane's normal). Exact however close x lies, where patch_irradiance is not.
+fn quad_irradiance(flux: vec3f, q: array<vec3f, 4>, n_r: vec3f, x: vec3f, n_x: vec3f) -> vec3f {
+    let area = 0.5 * length(cross(q[2] - q[0], q[3] - q[1]));
+    // A receiver (all but) on the patch's plane gets nothing; the test is against a hundredth
+    // of the patch's size, since at a rise of rounding noise the clip below would be decided
+    // by the (half-precision) normals' noise instead.
+    if area <= 0.0 || dot(x - q[0], n_r) <= 0.01 * sqrt(area) {
+        return vec3f(0.0);
+    }
+    // The quad relative to x, clipped to x's upper hemisphere (at most five corners).
+    var poly: array<vec3f, 8>;
+    var m = 0u;
+    for (var i = 0u; i < 4u; i++) {
+        let a = q[i] - x;
+        let b = q[(i + 1u) % 4u] - x;
+        let ha = dot(a, n_x);
+        let hb = dot(b, n_x);
+        if ha >= 0.0 {
+            poly[m] = a;
+            m++;
+        }
+        if (ha >= 0.0) != (hb >= 0.0) {
+            poly[m] = a + (b - a) * (ha / (ha - hb));
+            m++;
+        }
+    }
+    var f = 0.0;
+    for (var i = 0u; i < m; i++) {
+        let a = poly[i];
+        let b = poly[(i + 1u) % m];
+        let c = cross(a, b);
+        let s = length(c);
+        let la = length(a);
+        let lb = length(b);
+        if s > 1e-12 * la * lb {
+            f += atan2(s, dot(a, b)) * dot(n_x, c) / s;
+        }
+    }
+    return flux * (abs(f) / (2.0 * PI * area));
+}
 
 const TILE: u32 = 64u;
 var<workgroup> tile: array<Sender, 64>;
@@ -103,7 +170,7 @@ fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_inde
             }
             sender.lit = select(0.0, 1.0, n.w > 0.0 && any(sender.flux > vec3f(0.0)));
             sender.area = texel_area(omega, sender.position, n.xyz, globals.lamp_pos.xyz);
-            footprints[local] = texel_footprint(params, t, senders, sender.position, n.xyz);
+            footprints[local] = texel_footprint(t, senders, sender.position, n.xyz);
         }
         tile[local] = sender;
         workgroupBarrier();
