@@ -296,14 +296,18 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
             let lights = workgroupUniformLoad(&cut_total);
             let away = workgroupUniformLoad(&away_total);
             for (var first = 0u; first < lights; first += 64u) {
+                // Past the cut's end, lights without flux: they add nothing, so every
+                // receiver's loop below runs the same count without a test (cheaper on a CPU).
+                var light: Node;
                 if first + li < lights {
-                    batch[li] = nodes[cut[first + li] & INDEX_MASK];
+                    light = nodes[cut[first + li] & INDEX_MASK];
                 }
+                batch[li] = light;
                 workgroupBarrier();
                 let in_batch = min(64u, lights - first);
                 if valid {
-                    for (var i = own_class; i < in_batch; i += stride) {
-                        let node = batch[i];
+                    for (var j = 0u; j < in_batch; j += stride) {
+                        let node = batch[j + own_class];
                         own += patch_irradiance(node.flux, node.area, node.position, node.normal, x, n.xyz);
                     }
                     if lacking != 0u {
