@@ -107,9 +107,8 @@ fn texels(gpu: &engine::gpu::Gpu, r: &GiRender, (w, h): (u32, u32), camera: &Cam
                 continue;
             }
             let a = halves(&albedo, i);
-            let ax = ((x as f64 + 0.5) / w as f64 * 2.0 - 1.0) * tan_x;
-            let ay = (1.0 - (y as f64 + 0.5) / h as f64 * 2.0) * tan_y;
-            let r2 = 1.0 + ax * ax + ay * ay;
+            // 1 + tan² of the centre ray's angle from the axis (the axes are orthonormal).
+            let r2 = ray(x as f64 + 0.5, y as f64 + 0.5).length_squared();
             let p = Vec4::from(positions[i]).truncate();
             let normal = Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32);
             let omega = 4.0 * tan_x * tan_y / (w * h) as f64 / (r2 * r2.sqrt());
