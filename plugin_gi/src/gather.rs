@@ -1,12 +1,14 @@
 //! The gather: each pixel of the indirect target sums the irradiance of the pyramid's lights,
-//! an 8×8 tile sharing one cut through the pyramid (shaders/gi/gather.wgsl). One dispatch.
+//! an 8×8 tile sharing one cut through the pyramid. Two dispatches: the cuts, one invocation
+//! a tile (shaders/gi/cuts.wgsl), then the sum, one workgroup a tile (shaders/gi/gather.wgsl).
 
 use engine::wgpu;
 
 use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
 use crate::gpu_types::GATHER_STATS_SIZE;
-use crate::passes::{module, GATHER_SHADER};
+use crate::passes::{module, CUTS_SHADER, GATHER_SHADER};
 use crate::pyramid::PyramidBuffers;
+use crate::quadtree::Quadtree;
 
 /// What one gather reads and writes.
 pub struct GatherTargets<'a> {
@@ -26,34 +28,49 @@ pub struct GatherTargets<'a> {
 
 pub struct Gather {
     params: wgpu::Buffer,
+    cuts_layout: wgpu::BindGroupLayout,
+    cuts_pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
+    /// Every tile's cut, sized to the last indirect target and pyramid (see [`cuts_words`]).
+    cuts: Option<(u64, wgpu::Buffer)>,
 }
 
-/// Receivers per tile side.
+/// Receivers per tile side (`CUT_TILE` in gi_common.wgsl).
 pub const TILE: u32 = 8;
 
-/// The most lights a tile's cut holds, and what the gather's workgroup memory holds besides
-/// the cut and its two fronts (4 bytes per light each): the light batch, the receivers,
-/// their partial sums and a few counters.
-const CUT_MAX: u32 = 1536;
-const WORKGROUP_FIXED_BYTES: u32 = 6400;
+/// The most lights a tile's cut holds (`CUT_MAX` in gi_common.wgsl), unless the pyramid's top
+/// level has more: every one of those is in every cut.
+pub const CUT_MAX: u32 = 1536;
 
-/// The gather's source with its cut as large as the device's workgroup memory allows, up to
-/// [`CUT_MAX`] (a larger cut splits lights as finely as `split_ratio` asks in more tiles).
-pub fn sized_to(source: &str, limits: wgpu::Limits) -> String {
-    let cut = cut_capacity(limits.max_compute_workgroup_storage_size);
-    source.replace(&format!("const CUT_MAX: u32 = {CUT_MAX}u;"), &format!("const CUT_MAX: u32 = {cut}u;"))
-}
+/// Invocations (tiles) per workgroup of the cuts pass.
+const CUTS_GROUP: u32 = 8;
 
-/// Lights per cut for `bytes` of workgroup memory: a multiple of 64, from 256 to [`CUT_MAX`].
-pub fn cut_capacity(bytes: u32) -> u32 {
-    (bytes.saturating_sub(WORKGROUP_FIXED_BYTES) / 12 / 64 * 64).clamp(256, CUT_MAX)
+/// Words of the cuts buffer for an indirect target of `size` over `tree`: per tile, two
+/// counts and room for its cut.
+pub fn cuts_words(size: (u32, u32), tree: &Quadtree) -> u64 {
+    let (w, h) = tree.size(crate::quadtree::TOP);
+    let tiles = size.0.div_ceil(TILE) as u64 * size.1.div_ceil(TILE) as u64;
+    tiles * (CUT_MAX.max(w * h) as u64 + 2)
 }
 
 impl Gather {
     pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, params: wgpu::Buffer) -> Self {
         let storage = |read_only| S::Storage { read_only };
+        let cuts_layout = layout(
+            device,
+            "gi cuts",
+            &[
+                S::Uniform,
+                S::Uniform,
+                storage(true),
+                S::Texture,
+                S::Texture,
+                storage(false),
+                storage(false),
+                storage(false),
+            ],
+        );
         let layout = layout(
             device,
             "gi gather",
@@ -64,20 +81,22 @@ impl Gather {
                 S::Texture,
                 S::Texture,
                 S::StorageTexture(wgpu::TextureFormat::Rgba32Float),
-                storage(false),
-                storage(false),
+                storage(true),
                 S::Texture,
                 S::StorageTexture(wgpu::TextureFormat::Rgba32Float),
             ],
         );
-        let module = module(device, "gi gather", &sized_to(GATHER_SHADER, device.limits()));
+        let cuts_module = module(device, "gi cuts", CUTS_SHADER);
+        let cuts_pipeline =
+            compute_pipeline(device, "gi cuts", &cuts_module, "main", &[Some(globals), Some(&cuts_layout)]);
+        let module = module(device, "gi gather", GATHER_SHADER);
         let pipeline = compute_pipeline(device, "gi gather", &module, "main", &[Some(globals), Some(&layout)]);
-        Self { params, layout, pipeline }
+        Self { params, cuts_layout, cuts_pipeline, layout, pipeline, cuts: None }
     }
 
     /// Records the gather into an indirect target of `size`; returns the number of dispatches.
     pub fn record(
-        &self,
+        &mut self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         globals: &wgpu::BindGroup,
@@ -85,6 +104,31 @@ impl Gather {
         size: (u32, u32),
         t: &GatherTargets<'_>,
     ) -> u32 {
+        let words = cuts_words(size, &pyramid.tree);
+        if self.cuts.as_ref().is_none_or(|(w, _)| *w != words) {
+            let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("gi cuts"),
+                size: words * 4,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            });
+            self.cuts = Some((words, buffer));
+        }
+        let cuts = &self.cuts.as_ref().expect("sized above").1;
+        let cuts_group = bind(
+            device,
+            &self.cuts_layout,
+            &[
+                R::Buffer(&self.params),
+                R::Buffer(&pyramid.levels),
+                R::Buffer(&pyramid.nodes),
+                R::View(t.normal),
+                R::View(t.position),
+                R::Buffer(cuts),
+                R::Buffer(t.stats),
+                R::Buffer(t.lights),
+            ],
+        );
         let group = bind(
             device,
             &self.layout,
@@ -95,8 +139,7 @@ impl Gather {
                 R::View(t.normal),
                 R::View(t.position),
                 R::View(t.irradiance),
-                R::Buffer(t.stats),
-                R::Buffer(t.lights),
+                R::Buffer(cuts),
                 R::View(t.accumulate),
                 R::View(t.bounce),
             ],
@@ -104,11 +147,15 @@ impl Gather {
         encoder.clear_buffer(t.stats, 0, Some(GATHER_STATS_SIZE));
         let mut pass = encoder
             .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi gather"), timestamp_writes: None });
-        pass.set_pipeline(&self.pipeline);
+        let tiles = (size.0.div_ceil(TILE), size.1.div_ceil(TILE));
+        pass.set_pipeline(&self.cuts_pipeline);
         pass.set_bind_group(0, globals, &[]);
+        pass.set_bind_group(1, &cuts_group, &[]);
+        pass.dispatch_workgroups((tiles.0 * tiles.1).div_ceil(CUTS_GROUP), 1, 1);
+        pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(1, &group, &[]);
-        pass.dispatch_workgroups(size.0.div_ceil(TILE), size.1.div_ceil(TILE), 1);
-        1
+        pass.dispatch_workgroups(tiles.0, tiles.1, 1);
+        2
     }
 }
 
@@ -117,13 +164,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_cut_fits_the_workgroup_memory() {
-        assert_eq!(cut_capacity(16384), 832);
-        assert_eq!(cut_capacity(32768), CUT_MAX);
-        assert_eq!(cut_capacity(0), 256);
-        let shader = crate::passes::GATHER_SHADER;
-        assert!(shader.contains(&format!("const CUT_MAX: u32 = {CUT_MAX}u;")), "gather.wgsl's CUT_MAX is {CUT_MAX}");
-        let small = sized_to(shader, wgpu::Limits { max_compute_workgroup_storage_size: 16384, ..Default::default() });
-        assert!(small.contains("const CUT_MAX: u32 = 832u;"));
+    fn the_shaders_share_the_cut_layout() {
+        let common = crate::passes::INCLUDES[0].1;
+        assert!(common.contains(&format!("const CUT_TILE: u32 = {TILE}u;")), "gi_common.wgsl's CUT_TILE is {TILE}");
+        assert!(common.contains(&format!("const CUT_MAX: u32 = {CUT_MAX}u;")), "gi_common.wgsl's CUT_MAX is {CUT_MAX}");
+    }
+
+    #[test]
+    fn every_tile_has_room_for_its_cut_and_the_whole_top_level() {
+        let small = Quadtree::new(160, 90);
+        assert_eq!(cuts_words((160, 90), &small), 20 * 12 * (CUT_MAX as u64 + 2));
+        // A top level of 60×34 lights is more than a cut holds: each tile has room for all.
+        let large = Quadtree::new(3840, 2160);
+        assert_eq!(cuts_words((8, 8), &large), 60 * 34 + 2);
     }
 }

@@ -43,10 +43,14 @@ fn indirect_matches_the_reference_and_improves_as_lights_split_finer() {
 }
 
 /// Every lit texel's flux reaches a tile exactly once through its cut: the lights of the centre
-/// tile (those facing away from it included) carry all of the G-buffer's flux.
+/// tile (those facing away from it included) carry all of the G-buffer's flux, also where a
+/// cut outgrew its room and was built again coarser. The GI's calls per frame stay the same
+/// however many lights the cuts hold, and a cut is the same list, in the same order, each time
+/// it is built from the same frame (the gather's interleaved classes follow that order).
 #[test]
 fn a_tiles_cut_carries_all_of_the_gbuffer_flux_at_every_split_ratio() {
     let gpu = gpu();
+    let (mut calls, mut per_tile, mut full) = (Vec::new(), Vec::new(), 0);
     for split_ratio in [4.0, 1.0, 0.5, 0.2, 0.05] {
         let mut r = renderer(&gpu, &cornell_box(), settings(split_ratio, 0.25));
         render_linear(&gpu, &mut r, &cornell_view(4.0), "final", SIZE);
@@ -59,8 +63,24 @@ fn a_tiles_cut_carries_all_of_the_gbuffer_flux_at_every_split_ratio() {
             assert!(rel < 1e-4, "split {split_ratio}, channel {c}: lights carry {} W of {} W", carried[c], total[c]);
         }
         let cut = readback::cut_stats(&gpu, &r.renderer).unwrap();
-        println!("split {split_ratio}: centre tile {} lights, {:.0} per tile", lights.len(), cut.lights_per_tile());
+        let stats = r.handle.stats();
+        println!(
+            "split {split_ratio}: centre tile {} lights, {:.0} per tile, {} tiles full, {} calls",
+            lights.len(),
+            cut.lights_per_tile(),
+            cut.full_tiles,
+            stats.dispatches + stats.draws
+        );
+        calls.push(stats.dispatches + stats.draws);
+        per_tile.push(cut.lights_per_tile());
+        full += cut.full_tiles;
+        render_linear(&gpu, &mut r, &cornell_view(4.0), "final", SIZE);
+        let again = readback::lights(&gpu, &r.renderer).expect("gi ran");
+        assert!(again == lights, "split {split_ratio}: the centre tile's cut differs between two builds");
     }
+    assert!(full > 0, "the finest split must outgrow some tiles' cuts, so that their rebuild is tested");
+    assert!(per_tile[4] > 5.0 * per_tile[0], "the cuts must range widely in size: {per_tile:?}");
+    assert!(calls.iter().all(|&c| c == calls[0] && c <= 8), "GI calls per frame by split ratio: {calls:?}");
 }
 
 /// One visible texel as the CPU sees it (positions, normals and albedos from the rasteriser).

@@ -61,6 +61,21 @@ struct GiParams {
 
 const PYRAMID_LEVELS: u32 = 7u;
 
+// The cuts pass (cuts.wgsl) builds one cut per tile of CUT_TILE × CUT_TILE receivers, each
+// of at most CUT_MAX lights (or every light of the top level, when it has more); the gather
+// reads them. Entries: the level above LEVEL_SHIFT, the node's index below; FACES_AWAY marks
+// a light kept in the cut (it accounts for the flux) but not evaluated.
+const CUT_TILE: u32 = 8u;
+const CUT_MAX: u32 = 1536u;
+const LEVEL_SHIFT: u32 = 28u;
+const FACES_AWAY: u32 = 0x08000000u;
+const INDEX_MASK: u32 = 0x07ffffffu;
+
+// Words per tile in the cuts buffer: two counts, then the entries.
+fn cut_stride(top_lights: u32) -> u32 {
+    return max(CUT_MAX, top_lights) + 2u;
+}
+
 // Per level of the pyramid: offset into the node buffer, width, height.
 struct Levels {
     levels: array<vec4u, 8>,

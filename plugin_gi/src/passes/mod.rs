@@ -24,11 +24,13 @@ pub fn module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderM
 }
 
 pub const PYRAMID_SHADER: &str = include_str!("../../../shaders/gi/pyramid.wgsl");
+pub const CUTS_SHADER: &str = include_str!("../../../shaders/gi/cuts.wgsl");
 pub const GATHER_SHADER: &str = include_str!("../../../shaders/gi/gather.wgsl");
 
 /// Every WGSL file of the plugin, for validation tests.
 pub const SHADERS: &[(&str, &str)] = &[
     ("gi/pyramid.wgsl", PYRAMID_SHADER),
+    ("gi/cuts.wgsl", CUTS_SHADER),
     ("gi/gather.wgsl", GATHER_SHADER),
     ("gi/composite.wgsl", composite::SHADER),
     ("gi/lights_view.wgsl", lights_view::SHADER),

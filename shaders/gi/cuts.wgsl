@@ -1,0 +1,253 @@
+// GI cuts pass: for each 8×8 tile of receivers, the cut through the flux pyramid that the
+// gather sums. A light is split into its four children while it is large against its distance
+// to the tile (extent > split_ratio × gap), so near light comes from fine lights and far light
+// from coarse ones; every light carries all the flux of the texels below it and the cut covers
+// each lit texel once, so no energy is lost. A light whose plane faces away from every
+// receiver of the tile is kept in the cut but marked, as it gives them nothing.
+//
+// One invocation builds one tile's cut, walking the quadtree depth first without a stack (the
+// tree is implicit: a node's children and siblings follow from its level and place). On a CPU
+// device a SIMD row of invocations then walks eight neighbouring tiles in step, with no
+// barriers and no atomics; the order is deterministic, and consecutive lights of the cut are
+// neighbours in the lamp's view, so the gather's four interleaved classes (index mod 4) each
+// take an even share of every region.
+//
+// Per tile, `cuts` holds [evaluated count, facing-away count, entries…]: the evaluated lights
+// from the front, those facing away from the far end.
+#include "common.wgsl"
+#include "gi_common.wgsl"
+
+struct Stats {
+    // Draw arguments of the `lights` view: the cut of the tile at the centre of the view.
+    vertex_count: u32,
+    instance_count: u32,
+    first_vertex: u32,
+    first_instance: u32,
+    // Σ cut sizes over the tiles, the tiles with receivers, the tiles whose cut filled up.
+    lights: atomic<u32>,
+    tiles: atomic<u32>,
+    full: atomic<u32>,
+    pad: u32,
+};
+
+@group(1) @binding(0) var<uniform> params: GiParams;
+@group(1) @binding(1) var<uniform> table: Levels;
+@group(1) @binding(2) var<storage, read> nodes: array<Node>;
+@group(1) @binding(3) var gbuffer_normal: texture_2d<f32>;
+@group(1) @binding(4) var gbuffer_position: texture_2d<f32>;
+@group(1) @binding(5) var<storage, read_write> cuts: array<u32>;
+@group(1) @binding(6) var<storage, read_write> stats: Stats;
+@group(1) @binding(7) var<storage, read_write> centre_lights: array<ReflectionLight>;
+
+// A tile's bounds: centre and radius of a sphere holding its receivers, their mean normal and
+// the largest distance from the mean plane; `count` = 0 when the tile has none.
+struct TileBounds {
+    sphere: vec4f,
+    plane: vec4f,
+    count: u32,
+};
+
+fn tile_bounds(origin: vec2u) -> TileBounds {
+    var b: TileBounds;
+    let view = textureDimensions(gbuffer_normal);
+    var centre = vec3f(0.0);
+    var normal = vec3f(0.0);
+    var count = 0u;
+    for (var i = 0u; i < CUT_TILE * CUT_TILE; i++) {
+        let q = origin + vec2u(i % CUT_TILE, i / CUT_TILE);
+        if all(q < params.indirect_size) {
+            let g = receiver_texel(q, view, params.indirect_size);
+            let n = textureLoad(gbuffer_normal, g, 0);
+            if n.w > 0.0 {
+                centre += textureLoad(gbuffer_position, g, 0).xyz;
+                normal += n.xyz;
+                count++;
+            }
+        }
+    }
+    b.count = count;
+    if count == 0u {
+        return b;
+    }
+    centre /= f32(count);
+    normal = select(vec3f(0.0, 0.0, 1.0), normalize(normal), length(normal) > 1e-6);
+    var radius = 0.0;
+    var thickness = 0.0;
+    for (var i = 0u; i < CUT_TILE * CUT_TILE; i++) {
+        let q = origin + vec2u(i % CUT_TILE, i / CUT_TILE);
+        if all(q < params.indirect_size) {
+            let g = receiver_texel(q, view, params.indirect_size);
+            if textureLoad(gbuffer_normal, g, 0).w > 0.0 {
+                let v = textureLoad(gbuffer_position, g, 0).xyz - centre;
+                radius = max(radius, length(v));
+                thickness = max(thickness, abs(dot(v, normal)));
+            }
+        }
+    }
+    b.sphere = vec4f(centre, radius);
+    b.plane = vec4f(normal, thickness);
+    return b;
+}
+
+// What the walk does with one node.
+const SKIP: u32 = 0u;
+const TAKE: u32 = 1u;
+const TAKE_AWAY: u32 = 2u;
+const SPLIT: u32 = 3u;
+
+fn decide(node: Node, level: u32, floor: u32, split_ratio: f32, b: TileBounds) -> u32 {
+    if luminance(node.flux) <= 0.0 {
+        return SKIP;
+    }
+    let v = b.sphere.xyz - node.position;
+    let dist = length(v);
+    let radius = b.sphere.w;
+    if node.merged == 1u {
+        // The most any receiver rises above the light's plane: on or below it, it gets nothing.
+        let ct = dot(node.normal, b.plane.xyz);
+        let rise = dot(node.normal, v) + abs(ct) * b.plane.w + sqrt(max(0.0, 1.0 - ct * ct)) * radius;
+        if rise <= 1e-3 * (dist + radius) {
+            return TAKE_AWAY;
+        }
+    }
+    let gap = max(dist - radius, 0.0);
+    // A light that spans a fold or a depth step is split sooner.
+    let ratio = select(0.5 * split_ratio, split_ratio, node.merged == 1u);
+    if level > floor && node.extent > ratio * gap {
+        return SPLIT;
+    }
+    return TAKE;
+}
+
+// The counts of one walk: lights taken, taken facing away, and 1 when a light asked to be
+// split with the cut already full (the walk then stops: see `main`).
+struct Walk {
+    taken: u32,
+    away: u32,
+    filled: u32,
+};
+
+// Walks the quadtree depth first from the top level, splitting lights by `split_ratio` down to
+// `floor` at the finest, and writes the cut from `base` + 2 (those facing away from `last` down).
+fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, last: u32) -> Walk {
+    var w = Walk(0u, 0u, 0u);
+    let top = PYRAMID_LEVELS - 1u;
+    let top_level = table.levels[top];
+    // The cut's size if nothing more were split: a split adds three.
+    var planned = top_level.y * top_level.z;
+    var level = top;
+    var place = vec2u(0u);
+    loop {
+        let here = table.levels[level];
+        var descend = false;
+        if place.x < here.y && place.y < here.z {
+            let index = here.x + place.y * here.y + place.x;
+            let action = decide(nodes[index], level, floor, split_ratio, b);
+            let entry = (level << LEVEL_SHIFT) | index;
+            if action == SPLIT {
+                if planned + 3u > CUT_MAX {
+                    w.filled = 1u;
+                    break;
+                }
+                planned += 3u;
+                descend = true;
+            } else if action == TAKE {
+                cuts[base + 2u + w.taken] = entry;
+                w.taken++;
+            } else if action == TAKE_AWAY {
+                cuts[last - w.away] = entry | FACES_AWAY;
+                w.away++;
+            } else {
+                planned -= 1u;
+            }
+        } else {
+            // A child past the level's edge.
+            planned -= 1u;
+        }
+        if descend {
+            level -= 1u;
+            place *= 2u;
+            continue;
+        }
+        // Up past every last child (the fourth of its parent), then on to the next sibling,
+        // or to the next light of the top level in raster order.
+        while level < top && all((place & vec2u(1u)) == vec2u(1u)) {
+            place /= 2u;
+            level += 1u;
+        }
+        if level == top {
+            place.x += 1u;
+            if place.x >= top_level.y {
+                place = vec2u(0u, place.y + 1u);
+            }
+            if place.y >= top_level.z {
+                break;
+            }
+        } else if (place.x & 1u) == 0u {
+            place.x += 1u;
+        } else {
+            place = vec2u(place.x - 1u, place.y + 1u);
+        }
+    }
+    return w;
+}
+
+@compute @workgroup_size(8)
+fn main(@builtin(global_invocation_id) id: vec3u) {
+    let tiles = (params.indirect_size + CUT_TILE - 1u) / CUT_TILE;
+    let tile = id.x;
+    if tile >= tiles.x * tiles.y {
+        return;
+    }
+    let top = PYRAMID_LEVELS - 1u;
+    let top_level = table.levels[top];
+    let n_top = top_level.y * top_level.z;
+    let stride = cut_stride(n_top);
+    let base = tile * stride;
+    let last = base + stride - 1u;
+    let b = tile_bounds(vec2u(tile % tiles.x, tile / tiles.x) * CUT_TILE);
+    var w = Walk(0u, 0u, 0u);
+    if b.count > 0u {
+        // A cut that would outgrow CUT_MAX is walked again with a larger split ratio, so a
+        // full tile's lights stay as even in size across it as split_ratio makes them rather
+        // than fine where the walk began and coarse where it ran out; past three times the
+        // ratio (the lights next to the tile are split whatever the ratio), with its finest
+        // level one coarser each time. The top level alone always fits.
+        var floor = params.min_level;
+        var ratio = params.split_ratio;
+        loop {
+            w = walk(b, floor, ratio, base, last);
+            if w.filled == 0u || floor >= top {
+                break;
+            }
+            if ratio < 3.0 * params.split_ratio {
+                ratio *= 1.25;
+            } else {
+                floor++;
+            }
+        }
+        atomicAdd(&stats.lights, w.taken + w.away);
+        atomicAdd(&stats.tiles, 1u);
+        if ratio > params.split_ratio {
+            atomicAdd(&stats.full, 1u);
+        }
+    }
+    let taken = w.taken;
+    let away = w.away;
+    cuts[base] = taken;
+    cuts[base + 1u] = away;
+    let centre = params.indirect_size / 2u / CUT_TILE;
+    if tile == centre.y * tiles.x + centre.x {
+        // The evaluated lights, then those facing away (from the cut's far end).
+        let shown = min(taken + away, arrayLength(&centre_lights));
+        for (var i = 0u; i < shown; i++) {
+            let entry = cuts[select(last - (i - taken), base + 2u + i, i < taken)];
+            let node = nodes[entry & INDEX_MASK];
+            let faces_away = select(0.0, 1.0, (entry & FACES_AWAY) != 0u);
+            centre_lights[i] =
+                ReflectionLight(node.position, node.area, node.normal, entry >> LEVEL_SHIFT, node.flux, faces_away);
+        }
+        stats.vertex_count = 6u;
+        stats.instance_count = shown;
+    }
+}
