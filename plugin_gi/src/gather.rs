@@ -9,6 +9,7 @@ use crate::gpu_types::GATHER_STATS_SIZE;
 use crate::passes::{module, CUTS_SHADER, GATHER_SHADER};
 use crate::pyramid::PyramidBuffers;
 use crate::quadtree::Quadtree;
+use engine::wgpu::util::DeviceExt;
 
 /// What one gather reads and writes.
 pub struct GatherTargets<'a> {
@@ -32,8 +33,9 @@ pub struct Gather {
     cuts_pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
-    /// Every tile's cut, sized to the last indirect target and pyramid (see [`cuts_words`]).
-    cuts: Option<(u64, wgpu::Buffer)>,
+    /// The cuts of one band of tile rows, sized to the last indirect target and pyramid
+    /// (see [`Bands`]), and each band's first row (a uniform each).
+    cuts: Option<(Bands, wgpu::Buffer, Vec<wgpu::Buffer>)>,
 }
 
 /// Receivers per tile side (`CUT_TILE` in gi_common.wgsl).
@@ -46,12 +48,35 @@ pub const CUT_MAX: u32 = 1536;
 /// Invocations (tiles) per workgroup of the cuts pass.
 const CUTS_GROUP: u32 = 8;
 
-/// Words of the cuts buffer for an indirect target of `size` over `tree`: per tile, two
-/// counts and room for its cut.
-pub fn cuts_words(size: (u32, u32), tree: &Quadtree) -> u64 {
-    let (w, h) = tree.size(crate::quadtree::TOP);
-    let tiles = size.0.div_ceil(TILE) as u64 * size.1.div_ceil(TILE) as u64;
-    tiles * (CUT_MAX.max(w * h) as u64 + 2)
+/// At most this much memory holds the cuts: a larger target is gathered a band of tile rows
+/// at a time (two dispatches a band), so no setting can ask for an unbounded buffer.
+const CUTS_BUDGET_BYTES: u64 = 32 << 20;
+
+/// How the tiles of an indirect target are gathered: `rows` tile rows at a time, `count`
+/// times, each tile's cut `stride` words (two counts, then room for the cut).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Bands {
+    pub tiles: (u32, u32),
+    pub stride: u32,
+    pub rows: u32,
+    pub count: u32,
+}
+
+impl Bands {
+    /// For an indirect target of `size` over `tree`, with at most `budget` bytes of cuts.
+    pub fn new(size: (u32, u32), tree: &Quadtree, budget: u64) -> Self {
+        let (w, h) = tree.size(crate::quadtree::TOP);
+        let tiles = (size.0.div_ceil(TILE), size.1.div_ceil(TILE));
+        let stride = CUT_MAX.max(w * h) + 2;
+        let row_bytes = tiles.0 as u64 * stride as u64 * 4;
+        let rows = (budget / row_bytes).clamp(1, tiles.1.max(1) as u64) as u32;
+        Self { tiles, stride, rows, count: tiles.1.div_ceil(rows) }
+    }
+
+    /// Words of the cuts buffer: one band's tiles.
+    pub fn words(&self) -> u64 {
+        self.tiles.0 as u64 * self.rows as u64 * self.stride as u64
+    }
 }
 
 impl Gather {
@@ -69,6 +94,7 @@ impl Gather {
                 storage(false),
                 storage(false),
                 storage(false),
+                S::Uniform,
             ],
         );
         let layout = layout(
@@ -84,6 +110,7 @@ impl Gather {
                 storage(true),
                 S::Texture,
                 S::StorageTexture(wgpu::TextureFormat::Rgba32Float),
+                S::Uniform,
             ],
         );
         let cuts_module = module(device, "gi cuts", CUTS_SHADER);
@@ -104,58 +131,71 @@ impl Gather {
         size: (u32, u32),
         t: &GatherTargets<'_>,
     ) -> u32 {
-        let words = cuts_words(size, &pyramid.tree);
-        if self.cuts.as_ref().is_none_or(|(w, _)| *w != words) {
+        let budget = CUTS_BUDGET_BYTES.min(device.limits().max_storage_buffer_binding_size);
+        let bands = Bands::new(size, &pyramid.tree, budget);
+        if self.cuts.as_ref().is_none_or(|(b, _, _)| *b != bands) {
             let buffer = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("gi cuts"),
-                size: words * 4,
+                size: bands.words() * 4,
                 usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
             });
-            self.cuts = Some((words, buffer));
+            let firsts = (0..bands.count)
+                .map(|i| {
+                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some("gi band"),
+                        contents: bytemuck::cast_slice(&[i * bands.rows, bands.rows, 0, 0]),
+                        usage: wgpu::BufferUsages::UNIFORM,
+                    })
+                })
+                .collect();
+            self.cuts = Some((bands, buffer, firsts));
         }
-        let cuts = &self.cuts.as_ref().expect("sized above").1;
-        let cuts_group = bind(
-            device,
-            &self.cuts_layout,
-            &[
-                R::Buffer(&self.params),
-                R::Buffer(&pyramid.levels),
-                R::Buffer(&pyramid.nodes),
-                R::View(t.normal),
-                R::View(t.position),
-                R::Buffer(cuts),
-                R::Buffer(t.stats),
-                R::Buffer(t.lights),
-            ],
-        );
-        let group = bind(
-            device,
-            &self.layout,
-            &[
-                R::Buffer(&self.params),
-                R::Buffer(&pyramid.levels),
-                R::Buffer(&pyramid.nodes),
-                R::View(t.normal),
-                R::View(t.position),
-                R::View(t.irradiance),
-                R::Buffer(cuts),
-                R::View(t.accumulate),
-                R::View(t.bounce),
-            ],
-        );
+        let (_, cuts, firsts) = self.cuts.as_ref().expect("sized above");
         encoder.clear_buffer(t.stats, 0, Some(GATHER_STATS_SIZE));
         let mut pass = encoder
             .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi gather"), timestamp_writes: None });
-        let tiles = (size.0.div_ceil(TILE), size.1.div_ceil(TILE));
-        pass.set_pipeline(&self.cuts_pipeline);
         pass.set_bind_group(0, globals, &[]);
-        pass.set_bind_group(1, &cuts_group, &[]);
-        pass.dispatch_workgroups((tiles.0 * tiles.1).div_ceil(CUTS_GROUP), 1, 1);
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(1, &group, &[]);
-        pass.dispatch_workgroups(tiles.0, tiles.1, 1);
-        2
+        for first in firsts {
+            let cuts_group = bind(
+                device,
+                &self.cuts_layout,
+                &[
+                    R::Buffer(&self.params),
+                    R::Buffer(&pyramid.levels),
+                    R::Buffer(&pyramid.nodes),
+                    R::View(t.normal),
+                    R::View(t.position),
+                    R::Buffer(cuts),
+                    R::Buffer(t.stats),
+                    R::Buffer(t.lights),
+                    R::Buffer(first),
+                ],
+            );
+            let group = bind(
+                device,
+                &self.layout,
+                &[
+                    R::Buffer(&self.params),
+                    R::Buffer(&pyramid.levels),
+                    R::Buffer(&pyramid.nodes),
+                    R::View(t.normal),
+                    R::View(t.position),
+                    R::View(t.irradiance),
+                    R::Buffer(cuts),
+                    R::View(t.accumulate),
+                    R::View(t.bounce),
+                    R::Buffer(first),
+                ],
+            );
+            pass.set_pipeline(&self.cuts_pipeline);
+            pass.set_bind_group(1, &cuts_group, &[]);
+            pass.dispatch_workgroups((bands.tiles.0 * bands.rows).div_ceil(CUTS_GROUP), 1, 1);
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(1, &group, &[]);
+            pass.dispatch_workgroups(bands.tiles.0, bands.rows, 1);
+        }
+        2 * bands.count
     }
 }
 
@@ -173,9 +213,23 @@ mod tests {
     #[test]
     fn every_tile_has_room_for_its_cut_and_the_whole_top_level() {
         let small = Quadtree::new(160, 90);
-        assert_eq!(cuts_words((160, 90), &small), 20 * 12 * (CUT_MAX as u64 + 2));
+        let one = Bands::new((160, 90), &small, CUTS_BUDGET_BYTES);
+        assert_eq!(one, Bands { tiles: (20, 12), stride: CUT_MAX + 2, rows: 12, count: 1 });
+        assert_eq!(one.words(), 20 * 12 * (CUT_MAX as u64 + 2));
         // A top level of 60×34 lights is more than a cut holds: each tile has room for all.
         let large = Quadtree::new(3840, 2160);
-        assert_eq!(cuts_words((8, 8), &large), 60 * 34 + 2);
+        assert_eq!(Bands::new((8, 8), &large, CUTS_BUDGET_BYTES).stride, 60 * 34 + 2);
+    }
+
+    #[test]
+    fn a_large_target_is_gathered_in_bands_within_the_budget() {
+        // 3840×2160 at full resolution: 480×270 tiles, 2,042 words each.
+        let tree = Quadtree::new(3840, 2160);
+        let bands = Bands::new((3840, 2160), &tree, CUTS_BUDGET_BYTES);
+        assert!(bands.words() * 4 <= CUTS_BUDGET_BYTES, "{bands:?}");
+        assert!(bands.rows * bands.count >= 270 && (bands.count - 1) * bands.rows < 270, "{bands:?}");
+        // Even a budget too small for one row gathers a row at a time.
+        let tiny = Bands::new((3840, 2160), &tree, 1);
+        assert_eq!((tiny.rows, tiny.count), (1, 270));
     }
 }

@@ -12,8 +12,8 @@
 // neighbours in the lamp's view, so the gather's four interleaved classes (index mod 4) each
 // take an even share of every region.
 //
-// Per tile, `cuts` holds [evaluated count, facing-away count, entries…]: the evaluated lights
-// from the front, those facing away from the far end.
+// Per tile of the band, `cuts` holds [evaluated count, facing-away count, entries…]: the
+// evaluated lights from the front, those facing away from the far end.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -38,6 +38,7 @@ struct Stats {
 @group(1) @binding(5) var<storage, read_write> cuts: array<u32>;
 @group(1) @binding(6) var<storage, read_write> stats: Stats;
 @group(1) @binding(7) var<storage, read_write> centre_lights: array<ReflectionLight>;
+@group(1) @binding(8) var<uniform> band: Band;
 
 // A tile's bounds: centre and radius of a sphere holding its receivers, their mean normal and
 // the largest distance from the mean plane; `count` = 0 when the tile has none.
@@ -195,17 +196,19 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, last: u32) -> Wa
 @compute @workgroup_size(8)
 fn main(@builtin(global_invocation_id) id: vec3u) {
     let tiles = (params.indirect_size + CUT_TILE - 1u) / CUT_TILE;
-    let tile = id.x;
-    if tile >= tiles.x * tiles.y {
+    // This band's tiles, row after row; the cuts buffer holds one band.
+    let slot = id.x;
+    let tile = vec2u(slot % tiles.x, band.first_row + slot / tiles.x);
+    if slot >= tiles.x * band.rows || tile.y >= tiles.y {
         return;
     }
     let top = PYRAMID_LEVELS - 1u;
     let top_level = table.levels[top];
     let n_top = top_level.y * top_level.z;
     let stride = cut_stride(n_top);
-    let base = tile * stride;
+    let base = slot * stride;
     let last = base + stride - 1u;
-    let b = tile_bounds(vec2u(tile % tiles.x, tile / tiles.x) * CUT_TILE);
+    let b = tile_bounds(tile * CUT_TILE);
     var w = Walk(0u, 0u, 0u);
     if b.count > 0u {
         // A cut that would outgrow CUT_MAX is walked again with a larger split ratio, so a
@@ -237,7 +240,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     cuts[base] = taken;
     cuts[base + 1u] = away;
     let centre = params.indirect_size / 2u / CUT_TILE;
-    if tile == centre.y * tiles.x + centre.x {
+    if all(tile == centre) {
         // The evaluated lights, then those facing away (from the cut's far end).
         let shown = min(taken + away, arrayLength(&centre_lights));
         for (var i = 0u; i < shown; i++) {

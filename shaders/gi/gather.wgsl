@@ -20,6 +20,7 @@
 // bounce's irradiance alone, for the next bounce's flux.
 @group(1) @binding(7) var accumulate: texture_2d<f32>;
 @group(1) @binding(8) var bounce_out: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(9) var<uniform> band: Band;
 
 var<workgroup> receivers: array<vec4f, 64>;
 var<workgroup> receiver_normals: array<vec4f, 64>;
@@ -71,7 +72,7 @@ fn tent(k: u32) -> f32 {
 @compute @workgroup_size(8, 8)
 fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_index) li: u32,
     @builtin(workgroup_id) group: vec3u) {
-    let q = group.xy * CUT_TILE + local.xy;
+    let q = vec2u(group.x, band.first_row + group.y) * CUT_TILE + local.xy;
     let in_view = all(q < params.indirect_size);
     var x = vec3f(0.0);
     var n = vec4f(0.0);

@@ -71,6 +71,15 @@ const LEVEL_SHIFT: u32 = 28u;
 const FACES_AWAY: u32 = 0x08000000u;
 const INDEX_MASK: u32 = 0x07ffffffu;
 
+// The band of tile rows one cuts-and-sum dispatch pair covers (a large target is gathered a
+// band at a time, so the cuts buffer stays bounded; see gather.rs).
+struct Band {
+    first_row: u32,
+    rows: u32,
+    pad0: u32,
+    pad1: u32,
+};
+
 // Words per tile in the cuts buffer: two counts, then the entries.
 fn cut_stride(top_lights: u32) -> u32 {
     return max(CUT_MAX, top_lights) + 2u;
