@@ -53,7 +53,7 @@ const CUTS_GROUP: u32 = 8;
 const CUTS_BUDGET_BYTES: u64 = 32 << 20;
 
 /// How the tiles of an indirect target are gathered: `rows` tile rows at a time, `count`
-/// times, each tile's cut `stride` words (two counts, then room for the cut).
+/// times, each tile's cut `stride` vec4s (its counts, then two a light: see gi_common.wgsl).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Bands {
     pub tiles: (u32, u32),
@@ -67,15 +67,15 @@ impl Bands {
     pub fn new(size: (u32, u32), tree: &Quadtree, budget: u64) -> Self {
         let (w, h) = tree.size(crate::quadtree::TOP);
         let tiles = (size.0.div_ceil(TILE), size.1.div_ceil(TILE));
-        let stride = CUT_MAX.max(w * h) + 2;
-        let row_bytes = tiles.0 as u64 * stride as u64 * 4;
+        let stride = 1 + 2 * CUT_MAX.max(w * h);
+        let row_bytes = tiles.0 as u64 * stride as u64 * 16;
         let rows = (budget / row_bytes).clamp(1, tiles.1.max(1) as u64) as u32;
         Self { tiles, stride, rows, count: tiles.1.div_ceil(rows) }
     }
 
-    /// Words of the cuts buffer: one band's tiles.
-    pub fn words(&self) -> u64 {
-        self.tiles.0 as u64 * self.rows as u64 * self.stride as u64
+    /// Bytes of the cuts buffer: one band's tiles.
+    pub fn bytes(&self) -> u64 {
+        self.tiles.0 as u64 * self.rows as u64 * self.stride as u64 * 16
     }
 }
 
@@ -103,7 +103,6 @@ impl Gather {
             &[
                 S::Uniform,
                 S::Uniform,
-                storage(true),
                 S::Texture,
                 S::Texture,
                 S::StorageTexture(wgpu::TextureFormat::Rgba32Float),
@@ -136,7 +135,7 @@ impl Gather {
         if self.cuts.as_ref().is_none_or(|(b, _, _)| *b != bands) {
             let buffer = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("gi cuts"),
-                size: bands.words() * 4,
+                size: bands.bytes(),
                 usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
             });
@@ -178,7 +177,6 @@ impl Gather {
                 &[
                     R::Buffer(&self.params),
                     R::Buffer(&pyramid.levels),
-                    R::Buffer(&pyramid.nodes),
                     R::View(t.normal),
                     R::View(t.position),
                     R::View(t.irradiance),
@@ -214,19 +212,19 @@ mod tests {
     fn every_tile_has_room_for_its_cut_and_the_whole_top_level() {
         let small = Quadtree::new(160, 90);
         let one = Bands::new((160, 90), &small, CUTS_BUDGET_BYTES);
-        assert_eq!(one, Bands { tiles: (20, 12), stride: CUT_MAX + 2, rows: 12, count: 1 });
-        assert_eq!(one.words(), 20 * 12 * (CUT_MAX as u64 + 2));
+        assert_eq!(one, Bands { tiles: (20, 12), stride: 1 + 2 * CUT_MAX, rows: 12, count: 1 });
+        assert_eq!(one.bytes(), 20 * 12 * (1 + 2 * CUT_MAX as u64) * 16);
         // A top level of 60×34 lights is more than a cut holds: each tile has room for all.
         let large = Quadtree::new(3840, 2160);
-        assert_eq!(Bands::new((8, 8), &large, CUTS_BUDGET_BYTES).stride, 60 * 34 + 2);
+        assert_eq!(Bands::new((8, 8), &large, CUTS_BUDGET_BYTES).stride, 1 + 2 * 60 * 34);
     }
 
     #[test]
     fn a_large_target_is_gathered_in_bands_within_the_budget() {
-        // 3840×2160 at full resolution: 480×270 tiles, 2,042 words each.
+        // 3840×2160 at full resolution: 480×270 tiles, 4,081 vec4s each.
         let tree = Quadtree::new(3840, 2160);
         let bands = Bands::new((3840, 2160), &tree, CUTS_BUDGET_BYTES);
-        assert!(bands.words() * 4 <= CUTS_BUDGET_BYTES, "{bands:?}");
+        assert!(bands.bytes() <= CUTS_BUDGET_BYTES, "{bands:?}");
         assert!(bands.rows * bands.count >= 270 && (bands.count - 1) * bands.rows < 270, "{bands:?}");
         // Even a budget too small for one row gathers a row at a time.
         let tiny = Bands::new((3840, 2160), &tree, 1);

@@ -12,8 +12,9 @@
 // neighbours in the lamp's view, so the gather's four interleaved classes (index mod 4) each
 // take an even share of every region.
 //
-// Per tile of the band, `cuts` holds [evaluated count, facing-away count, entries…]: the
-// evaluated lights from the front, those facing away from the far end.
+// Per tile of the band, `cuts` holds the counts (evaluated, facing away), then the evaluated
+// lights, two vec4 each (see gi_common.wgsl). The tile at the centre of the view also writes
+// its whole cut, those facing away included, to `centre_lights` for the `lights` view.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -35,7 +36,7 @@ struct Stats {
 @group(1) @binding(2) var<storage, read> nodes: array<Node>;
 @group(1) @binding(3) var gbuffer_normal: texture_2d<f32>;
 @group(1) @binding(4) var gbuffer_position: texture_2d<f32>;
-@group(1) @binding(5) var<storage, read_write> cuts: array<u32>;
+@group(1) @binding(5) var<storage, read_write> cuts: array<vec4f>;
 @group(1) @binding(6) var<storage, read_write> stats: Stats;
 @group(1) @binding(7) var<storage, read_write> centre_lights: array<ReflectionLight>;
 @group(1) @binding(8) var<uniform> band: Band;
@@ -129,8 +130,9 @@ struct Walk {
 };
 
 // Walks the quadtree depth first from the top level, splitting lights by `split_ratio` down to
-// `floor` at the finest, and writes the cut from `base` + 2 (those facing away from `last` down).
-fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, last: u32) -> Walk {
+// `floor` at the finest, and writes the evaluated lights of the cut from `base` + 1 (and every
+// light of it to `centre_lights` when `centre`).
+fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) -> Walk {
     var w = Walk(0u, 0u, 0u);
     let top = PYRAMID_LEVELS - 1u;
     let top_level = table.levels[top];
@@ -143,8 +145,8 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, last: u32) -> Wa
         var descend = false;
         if place.x < here.y && place.y < here.z {
             let index = here.x + place.y * here.y + place.x;
-            let action = decide(nodes[index], level, floor, split_ratio, b);
-            let entry = (level << LEVEL_SHIFT) | index;
+            let node = nodes[index];
+            let action = decide(node, level, floor, split_ratio, b);
             if action == SPLIT {
                 if planned + 3u > CUT_MAX {
                     w.filled = 1u;
@@ -152,12 +154,19 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, last: u32) -> Wa
                 }
                 planned += 3u;
                 descend = true;
-            } else if action == TAKE {
-                cuts[base + 2u + w.taken] = entry;
-                w.taken++;
-            } else if action == TAKE_AWAY {
-                cuts[last - w.away] = entry | FACES_AWAY;
-                w.away++;
+            } else if action == TAKE || action == TAKE_AWAY {
+                if centre && w.taken + w.away < arrayLength(&centre_lights) {
+                    centre_lights[w.taken + w.away] = ReflectionLight(node.position, node.area, node.normal, level,
+                        node.flux, select(0.0, 1.0, action == TAKE_AWAY));
+                }
+                if action == TAKE {
+                    let packed = pack_cut_light(node);
+                    cuts[base + 1u + 2u * w.taken] = packed[0];
+                    cuts[base + 2u + 2u * w.taken] = packed[1];
+                    w.taken++;
+                } else {
+                    w.away++;
+                }
             } else {
                 planned -= 1u;
             }
@@ -207,8 +216,8 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     let n_top = top_level.y * top_level.z;
     let stride = cut_stride(n_top);
     let base = slot * stride;
-    let last = base + stride - 1u;
     let b = tile_bounds(tile * CUT_TILE);
+    let is_centre = all(tile == params.indirect_size / 2u / CUT_TILE);
     var w = Walk(0u, 0u, 0u);
     if b.count > 0u {
         // A cut that would outgrow CUT_MAX is walked again with a larger split ratio, so a
@@ -219,7 +228,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
         var floor = params.min_level;
         var ratio = params.split_ratio;
         loop {
-            w = walk(b, floor, ratio, base, last);
+            w = walk(b, floor, ratio, base, is_centre);
             if w.filled == 0u || floor >= top {
                 break;
             }
@@ -235,22 +244,9 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
             atomicAdd(&stats.full, 1u);
         }
     }
-    let taken = w.taken;
-    let away = w.away;
-    cuts[base] = taken;
-    cuts[base + 1u] = away;
-    let centre = params.indirect_size / 2u / CUT_TILE;
-    if all(tile == centre) {
-        // The evaluated lights, then those facing away (from the cut's far end).
-        let shown = min(taken + away, arrayLength(&centre_lights));
-        for (var i = 0u; i < shown; i++) {
-            let entry = cuts[select(last - (i - taken), base + 2u + i, i < taken)];
-            let node = nodes[entry & INDEX_MASK];
-            let faces_away = select(0.0, 1.0, (entry & FACES_AWAY) != 0u);
-            centre_lights[i] =
-                ReflectionLight(node.position, node.area, node.normal, entry >> LEVEL_SHIFT, node.flux, faces_away);
-        }
+    cuts[base] = vec4f(bitcast<f32>(w.taken), bitcast<f32>(w.away), 0.0, 0.0);
+    if is_centre {
         stats.vertex_count = 6u;
-        stats.instance_count = shown;
+        stats.instance_count = min(w.taken + w.away, arrayLength(&centre_lights));
     }
 }

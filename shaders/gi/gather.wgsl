@@ -11,16 +11,15 @@
 
 @group(1) @binding(0) var<uniform> params: GiParams;
 @group(1) @binding(1) var<uniform> table: Levels;
-@group(1) @binding(2) var<storage, read> nodes: array<Node>;
-@group(1) @binding(3) var gbuffer_normal: texture_2d<f32>;
-@group(1) @binding(4) var gbuffer_position: texture_2d<f32>;
-@group(1) @binding(5) var irradiance_out: texture_storage_2d<rgba32float, write>;
-@group(1) @binding(6) var<storage, read> cuts: array<u32>;
+@group(1) @binding(2) var gbuffer_normal: texture_2d<f32>;
+@group(1) @binding(3) var gbuffer_position: texture_2d<f32>;
+@group(1) @binding(4) var irradiance_out: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(5) var<storage, read> cuts: array<vec4f>;
 // Further bounces (params.source == 1): the total so far, added to the output, and this
 // bounce's irradiance alone, for the next bounce's flux.
-@group(1) @binding(7) var accumulate: texture_2d<f32>;
-@group(1) @binding(8) var bounce_out: texture_storage_2d<rgba32float, write>;
-@group(1) @binding(9) var<uniform> band: Band;
+@group(1) @binding(6) var accumulate: texture_2d<f32>;
+@group(1) @binding(7) var bounce_out: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(8) var<uniform> band: Band;
 
 var<workgroup> receivers: array<vec4f, 64>;
 var<workgroup> receiver_normals: array<vec4f, 64>;
@@ -91,7 +90,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     let top_level = table.levels[PYRAMID_LEVELS - 1u];
     let base = (group.y * tiles.x + group.x) * cut_stride(top_level.y * top_level.z);
     if li == 0u {
-        cut_size = cuts[base];
+        cut_size = bitcast<u32>(cuts[base].x);
     }
     // (Its barrier also makes every receiver visible to its neighbours.)
     let lights = workgroupUniformLoad(&cut_size);
@@ -125,15 +124,15 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
         // way) than the barriers saved.
         if valid {
             for (var j = own_class; j < lights; j += stride) {
-                let node = nodes[cuts[base + 2u + j] & INDEX_MASK];
-                own += patch_irradiance(node.flux, node.area, node.position, node.normal, x, n.xyz);
+                let l = unpack_cut_light(cuts[base + 1u + 2u * j], cuts[base + 2u + 2u * j]);
+                own += patch_irradiance(l.flux, l.area, l.position, l.normal, x, n.xyz);
             }
             // The classes no neighbour on this surface has, evaluated here.
             for (var c = 0u; c < 4u; c++) {
                 if ((lacking >> c) & 1u) != 0u {
                     for (var i = c; i < lights; i += 4u) {
-                        let node = nodes[cuts[base + 2u + i] & INDEX_MASK];
-                        e += patch_irradiance(node.flux, node.area, node.position, node.normal, x, n.xyz);
+                        let l = unpack_cut_light(cuts[base + 1u + 2u * i], cuts[base + 2u + 2u * i]);
+                        e += patch_irradiance(l.flux, l.area, l.position, l.normal, x, n.xyz);
                     }
                 }
             }

@@ -63,13 +63,39 @@ const PYRAMID_LEVELS: u32 = 7u;
 
 // The cuts pass (cuts.wgsl) builds one cut per tile of CUT_TILE × CUT_TILE receivers, each
 // of at most CUT_MAX lights (or every light of the top level, when it has more); the gather
-// reads them. Entries: the level above LEVEL_SHIFT, the node's index below; FACES_AWAY marks
-// a light kept in the cut (it accounts for the flux) but not evaluated.
+// (gather.wgsl) sums them. A tile's cut is stored as the lights themselves, two vec4 each
+// (see `CutLight`), after one vec4 of counts: the gather then loads two vec4 a light, where
+// an index into the pyramid and the node behind it took four (a CPU device loads per lane).
 const CUT_TILE: u32 = 8u;
 const CUT_MAX: u32 = 1536u;
-const LEVEL_SHIFT: u32 = 28u;
-const FACES_AWAY: u32 = 0x08000000u;
-const INDEX_MASK: u32 = 0x07ffffffu;
+
+// What the gather needs of a light: where, how large, its flux, and its normal.
+struct CutLight {
+    position: vec3f,
+    area: f32,
+    flux: vec3f,
+    normal: vec3f,
+};
+
+// The two vec4 of a light in a cut: (position, area) and (flux, octahedral normal in 2×16 bits).
+fn pack_cut_light(node: Node) -> array<vec4f, 2> {
+    let n = node.normal / (abs(node.normal.x) + abs(node.normal.y) + abs(node.normal.z) + 1e-20);
+    var oct = n.xy;
+    if n.z < 0.0 {
+        oct = (1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0));
+    }
+    let packed = bitcast<f32>(pack2x16snorm(oct));
+    return array<vec4f, 2>(vec4f(node.position, node.area), vec4f(node.flux, packed));
+}
+
+fn unpack_cut_light(a: vec4f, b: vec4f) -> CutLight {
+    let oct = unpack2x16snorm(bitcast<u32>(b.w));
+    var n = vec3f(oct, 1.0 - abs(oct.x) - abs(oct.y));
+    if n.z < 0.0 {
+        n = vec3f((1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0)), n.z);
+    }
+    return CutLight(a.xyz, a.w, b.xyz, normalize(n));
+}
 
 // The band of tile rows one cuts-and-sum dispatch pair covers (a large target is gathered a
 // band at a time, so the cuts buffer stays bounded; see gather.rs).
@@ -80,9 +106,9 @@ struct Band {
     pad1: u32,
 };
 
-// Words per tile in the cuts buffer: two counts, then the entries.
+// vec4s per tile in the cuts buffer: the counts (evaluated, facing away), then two a light.
 fn cut_stride(top_lights: u32) -> u32 {
-    return max(CUT_MAX, top_lights) + 2u;
+    return 1u + 2u * max(CUT_MAX, top_lights);
 }
 
 // Per level of the pyramid: offset into the node buffer, width, height.
