@@ -13,7 +13,7 @@
 // take an even share of every region.
 //
 // Per tile of the band, `cuts` holds the counts (evaluated, facing away), then the evaluated
-// lights, two vec4 each (see gi_common.wgsl). The tile at the centre of the view also writes
+// lights, one vec4 each (see gi_common.wgsl). The tile at the centre of the view also writes
 // its whole cut, those facing away included, to `centre_lights` for the `lights` view.
 #include "common.wgsl"
 #include "gi_common.wgsl"
@@ -36,7 +36,7 @@ struct Stats {
 @group(1) @binding(2) var<storage, read> nodes: array<Node>;
 @group(1) @binding(3) var gbuffer_normal: texture_2d<f32>;
 @group(1) @binding(4) var gbuffer_position: texture_2d<f32>;
-@group(1) @binding(5) var<storage, read_write> cuts: array<vec4f>;
+@group(1) @binding(5) var<storage, read_write> cuts: array<vec4u>;
 @group(1) @binding(6) var<storage, read_write> stats: Stats;
 @group(1) @binding(7) var<storage, read_write> centre_lights: array<ReflectionLight>;
 @group(1) @binding(8) var<uniform> band: Band;
@@ -130,7 +130,7 @@ struct Walk {
 };
 
 // Walks the quadtree depth first from the top level, splitting lights by `split_ratio` down to
-// `floor` at the finest, and writes the evaluated lights of the cut from `base` + 1 (and every
+// `floor` at the finest, and writes the evaluated lights of the cut from `base` + 2 (and every
 // light of it to `centre_lights` when `centre`).
 fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) -> Walk {
     var w = Walk(0u, 0u, 0u);
@@ -160,9 +160,7 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) ->
                         node.flux, select(0.0, 1.0, action == TAKE_AWAY));
                 }
                 if action == TAKE {
-                    let packed = pack_cut_light(node);
-                    cuts[base + 1u + 2u * w.taken] = packed[0];
-                    cuts[base + 2u + 2u * w.taken] = packed[1];
+                    cuts[base + 2u + w.taken] = pack_cut_light(node, b.sphere.xyz);
                     w.taken++;
                 } else {
                     w.away++;
@@ -244,7 +242,8 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
             atomicAdd(&stats.full, 1u);
         }
     }
-    cuts[base] = vec4f(bitcast<f32>(w.taken), bitcast<f32>(w.away), 0.0, 0.0);
+    cuts[base] = vec4u(w.taken, w.away, 0u, 0u);
+    cuts[base + 1u] = vec4u(bitcast<vec3u>(b.sphere.xyz), 0u);
     if is_centre {
         stats.vertex_count = 6u;
         stats.instance_count = min(w.taken + w.away, arrayLength(&centre_lights));

@@ -14,7 +14,7 @@
 @group(1) @binding(2) var gbuffer_normal: texture_2d<f32>;
 @group(1) @binding(3) var gbuffer_position: texture_2d<f32>;
 @group(1) @binding(4) var irradiance_out: texture_storage_2d<rgba32float, write>;
-@group(1) @binding(5) var<storage, read> cuts: array<vec4f>;
+@group(1) @binding(5) var<storage, read> cuts: array<vec4u>;
 // Further bounces (params.source == 1): the total so far, added to the output, and this
 // bounce's irradiance alone, for the next bounce's flux.
 @group(1) @binding(6) var accumulate: texture_2d<f32>;
@@ -90,10 +90,11 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     let top_level = table.levels[PYRAMID_LEVELS - 1u];
     let base = (group.y * tiles.x + group.x) * cut_stride(top_level.y * top_level.z);
     if li == 0u {
-        cut_size = bitcast<u32>(cuts[base].x);
+        cut_size = cuts[base].x;
     }
     // (Its barrier also makes every receiver visible to its neighbours.)
     let lights = workgroupUniformLoad(&cut_size);
+    let centre = bitcast<vec3f>(cuts[base + 1u].xyz);
     var e = vec3f(0.0);
     // Interleaving: this receiver's own class, and the classes it must evaluate itself too
     // (bit c) because no neighbour on its surface has them.
@@ -124,14 +125,14 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
         // way) than the barriers saved.
         if valid {
             for (var j = own_class; j < lights; j += stride) {
-                let l = unpack_cut_light(cuts[base + 1u + 2u * j], cuts[base + 2u + 2u * j]);
+                let l = unpack_cut_light(cuts[base + 2u + j], centre);
                 own += patch_irradiance(l.flux, l.area, l.position, l.normal, x, n.xyz);
             }
             // The classes no neighbour on this surface has, evaluated here.
             for (var c = 0u; c < 4u; c++) {
                 if ((lacking >> c) & 1u) != 0u {
                     for (var i = c; i < lights; i += 4u) {
-                        let l = unpack_cut_light(cuts[base + 1u + 2u * i], cuts[base + 2u + 2u * i]);
+                        let l = unpack_cut_light(cuts[base + 2u + i], centre);
                         e += patch_irradiance(l.flux, l.area, l.position, l.normal, x, n.xyz);
                     }
                 }

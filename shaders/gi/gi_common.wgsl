@@ -63,9 +63,10 @@ const PYRAMID_LEVELS: u32 = 7u;
 
 // The cuts pass (cuts.wgsl) builds one cut per tile of CUT_TILE × CUT_TILE receivers, each
 // of at most CUT_MAX lights (or every light of the top level, when it has more); the gather
-// (gather.wgsl) sums them. A tile's cut is stored as the lights themselves, two vec4 each
-// (see `CutLight`), after one vec4 of counts: the gather then loads two vec4 a light, where
-// an index into the pyramid and the node behind it took four (a CPU device loads per lane).
+// (gather.wgsl) sums them. A tile's cut is stored as the lights themselves, one vec4 each
+// (see `pack_cut_light`), after a vec4 of counts and one of the tile's centre: the gather then
+// loads one vec4 a light, where an index into the pyramid and the node behind it took four
+// (a CPU device loads per lane).
 const CUT_TILE: u32 = 8u;
 const CUT_MAX: u32 = 1536u;
 
@@ -77,24 +78,49 @@ struct CutLight {
     normal: vec3f,
 };
 
-// The two vec4 of a light in a cut: (position, area) and (flux, octahedral normal in 2×16 bits).
-fn pack_cut_light(node: Node) -> array<vec4f, 2> {
+// A light in a cut as one vec4u: its position relative to the tile's centre and the square
+// root of its area as four f16, its flux in a shared-exponent RGB (9 bits a channel), its
+// normal in octahedral 2×16 bits. f16 keeps a light's place to 1/2048 of its distance from
+// the tile, and the shared exponent its flux to 1/512 of its brightest channel.
+fn pack_cut_light(node: Node, centre: vec3f) -> vec4u {
+    let rel = node.position - centre;
     let n = node.normal / (abs(node.normal.x) + abs(node.normal.y) + abs(node.normal.z) + 1e-20);
     var oct = n.xy;
     if n.z < 0.0 {
         oct = (1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0));
     }
-    let packed = bitcast<f32>(pack2x16snorm(oct));
-    return array<vec4f, 2>(vec4f(node.position, node.area), vec4f(node.flux, packed));
+    return vec4u(pack2x16float(rel.xy), pack2x16float(vec2f(rel.z, sqrt(node.area))), pack_rgb9e5(node.flux),
+        pack2x16snorm(oct));
 }
 
-fn unpack_cut_light(a: vec4f, b: vec4f) -> CutLight {
-    let oct = unpack2x16snorm(bitcast<u32>(b.w));
+fn unpack_cut_light(v: vec4u, centre: vec3f) -> CutLight {
+    let xy = unpack2x16float(v.x);
+    let z_side = unpack2x16float(v.y);
+    let oct = unpack2x16snorm(v.w);
     var n = vec3f(oct, 1.0 - abs(oct.x) - abs(oct.y));
     if n.z < 0.0 {
         n = vec3f((1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0)), n.z);
     }
-    return CutLight(a.xyz, a.w, b.xyz, normalize(n));
+    return CutLight(centre + vec3f(xy, z_side.x), z_side.y * z_side.y, unpack_rgb9e5(v.z), normalize(n));
+}
+
+// RGB with one shared exponent (the GL_EXT_texture_shared_exponent encoding, rounded).
+fn pack_rgb9e5(c: vec3f) -> u32 {
+    let m = clamp(c, vec3f(0.0), vec3f(65408.0));
+    let top = max(m.x, max(m.y, m.z));
+    var e = max(-16, i32(floor(log2(max(top, 1e-30))))) + 16;
+    var unit = exp2(f32(e - 24));
+    if floor(top / unit + 0.5) >= 512.0 {
+        unit *= 2.0;
+        e += 1;
+    }
+    let q = vec3u(min(floor(m / unit + 0.5), vec3f(511.0)));
+    return q.x | (q.y << 9u) | (q.z << 18u) | (u32(e) << 27u);
+}
+
+fn unpack_rgb9e5(v: u32) -> vec3f {
+    let q = vec3f(f32(v & 511u), f32((v >> 9u) & 511u), f32((v >> 18u) & 511u));
+    return q * exp2(f32(i32(v >> 27u)) - 24.0);
 }
 
 // The band of tile rows one cuts-and-sum dispatch pair covers (a large target is gathered a
@@ -106,9 +132,10 @@ struct Band {
     pad1: u32,
 };
 
-// vec4s per tile in the cuts buffer: the counts (evaluated, facing away), then two a light.
+// vec4s per tile in the cuts buffer: the counts (evaluated, facing away), the tile's centre,
+// then one a light.
 fn cut_stride(top_lights: u32) -> u32 {
-    return 1u + 2u * max(CUT_MAX, top_lights);
+    return 2u + max(CUT_MAX, top_lights);
 }
 
 // Per level of the pyramid: offset into the node buffer, width, height.
