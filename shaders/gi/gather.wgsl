@@ -21,23 +21,23 @@
 @group(1) @binding(7) var bounce_out: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(8) var<uniform> band: Band;
 
+// The tile's receivers: position, and the normal packed in w (NO_NORMAL where there is no
+// surface), so a neighbour is one load.
 var<workgroup> receivers: array<vec4f, 64>;
-var<workgroup> receiver_normals: array<vec4f, 64>;
 // Each receiver's irradiance from its own class of lights, for its neighbours.
 var<workgroup> partials: array<vec3f, 64>;
 // The number of lights this tile evaluates (its cut less those facing away).
 var<workgroup> cut_size: u32;
 
-// Whether receiver b (a neighbour of a, both in the tile) lies on a's surface: near, on its
-// plane, facing the same way. Its irradiance from a class of lights then stands for a's.
-fn same_surface(a: u32, b: u32) -> bool {
-    if receivers[b].w <= 0.0 {
-        return false;
-    }
-    let v = receivers[b].xyz - receivers[a].xyz;
-    let d = length(receivers[a].xyz - globals.camera_pos.xyz);
-    return length(v) < 0.1 * d && abs(dot(receiver_normals[a].xyz, v)) < 0.02 * d
-        && dot(receiver_normals[a].xyz, receiver_normals[b].xyz) > 0.9;
+// Whether receiver b (a neighbour in the tile) lies on the surface of the receiver at x with
+// normal n, seen from distance d: near, on its plane, facing the same way. Its irradiance
+// from a class of lights then stands for this one's.
+fn same_surface(x: vec3f, n: vec3f, d: f32, b: u32) -> bool {
+    let other = receivers[b];
+    let packed = bitcast<u32>(other.w);
+    let v = other.xyz - x;
+    return packed != NO_NORMAL && length(v) < 0.1 * d && abs(dot(n, v)) < 0.02 * d
+        && dot(n, unpack_normal(packed)) > 0.9;
 }
 
 // The class of lights the receiver at tile position p evaluates itself.
@@ -50,13 +50,13 @@ fn neighbour(p: vec2i, k: u32) -> vec2i {
     return p + vec2i(i32(k % 3u) - 1, i32(k / 3u) - 1);
 }
 
-// Which of p's 3×3 neighbours (bit (dy + 1) * 3 + dx + 1) lie on p's surface.
-fn same_surface_mask(p: vec2i) -> u32 {
+// Which of p's 3×3 neighbours (bit (dy + 1) * 3 + dx + 1) lie on p's surface (at x, normal n).
+fn same_surface_mask(p: vec2i, x: vec3f, n: vec3f) -> u32 {
     var mask = 0u;
-    let a = u32(p.y * 8 + p.x);
+    let d = length(x - globals.camera_pos.xyz);
     for (var k = 0u; k < 9u; k++) {
         let q = neighbour(p, k);
-        if k != 4u && all(q >= vec2i(0)) && all(q <= vec2i(7)) && same_surface(a, u32(q.y * 8 + q.x)) {
+        if k != 4u && all(q >= vec2i(0)) && all(q <= vec2i(7)) && same_surface(x, n, d, u32(q.y * 8 + q.x)) {
             mask |= 1u << k;
         }
     }
@@ -84,8 +84,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
         depth = position.w;
     }
     let valid = in_view && n.w > 0.0;
-    receivers[li] = vec4f(x, select(0.0, 1.0, valid));
-    receiver_normals[li] = vec4f(n.xyz, 0.0);
+    receivers[li] = vec4f(x, bitcast<f32>(select(NO_NORMAL, pack_normal(n.xyz), valid)));
     let tiles = (params.indirect_size + CUT_TILE - 1u) / CUT_TILE;
     let top_level = table.levels[PYRAMID_LEVELS - 1u];
     let base = (group.y * tiles.x + group.x) * cut_stride(top_level.y * top_level.z);
@@ -106,7 +105,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     var similar = 0u;
     var lacking = 0u;
     if valid && interleaved {
-        similar = same_surface_mask(p);
+        similar = same_surface_mask(p, x, n.xyz);
         for (var k = 0u; k < 9u; k++) {
             if ((similar >> k) & 1u) != 0u {
                 weights[light_class(neighbour(p, k))] += tent(k);

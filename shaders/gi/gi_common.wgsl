@@ -84,25 +84,37 @@ struct CutLight {
 // the tile, and the shared exponent its flux to 1/512 of its brightest channel.
 fn pack_cut_light(node: Node, centre: vec3f) -> vec4u {
     let rel = node.position - centre;
-    let n = node.normal / (abs(node.normal.x) + abs(node.normal.y) + abs(node.normal.z) + 1e-20);
-    var oct = n.xy;
-    if n.z < 0.0 {
-        oct = (1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0));
-    }
     return vec4u(pack2x16float(rel.xy), pack2x16float(vec2f(rel.z, sqrt(node.area))), pack_rgb9e5(node.flux),
-        pack2x16snorm(oct));
+        pack_normal(node.normal));
 }
 
 fn unpack_cut_light(v: vec4u, centre: vec3f) -> CutLight {
     let xy = unpack2x16float(v.x);
     let z_side = unpack2x16float(v.y);
-    let oct = unpack2x16snorm(v.w);
+    return CutLight(centre + vec3f(xy, z_side.x), z_side.y * z_side.y, unpack_rgb9e5(v.z), unpack_normal(v.w));
+}
+
+// A unit normal in 32 bits: octahedral, 2×16 bits (snorm; never 0x80008000, see NO_NORMAL).
+fn pack_normal(normal: vec3f) -> u32 {
+    let n = normal / (abs(normal.x) + abs(normal.y) + abs(normal.z) + 1e-20);
+    var oct = n.xy;
+    if n.z < 0.0 {
+        oct = (1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0));
+    }
+    return pack2x16snorm(oct);
+}
+
+fn unpack_normal(v: u32) -> vec3f {
+    let oct = unpack2x16snorm(v);
     var n = vec3f(oct, 1.0 - abs(oct.x) - abs(oct.y));
     if n.z < 0.0 {
         n = vec3f((1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0)), n.z);
     }
-    return CutLight(centre + vec3f(xy, z_side.x), z_side.y * z_side.y, unpack_rgb9e5(v.z), normalize(n));
+    return normalize(n);
 }
+
+// What pack_normal never gives (it writes −1 as −32767): "no surface here".
+const NO_NORMAL: u32 = 0x80008000u;
 
 // RGB with one shared exponent (the GL_EXT_texture_shared_exponent encoding, rounded).
 fn pack_rgb9e5(c: vec3f) -> u32 {
