@@ -3,7 +3,8 @@
 // to the tile (extent > split_ratio × gap), so near light comes from fine lights and far light
 // from coarse ones; every light carries all the flux of the texels below it and the cut covers
 // each lit texel once, so no energy is lost. A light whose plane faces away from every
-// receiver of the tile is kept in the cut but marked, as it gives them nothing.
+// receiver of the tile belongs to the cut (it is counted, and the `lights` view shows it) but
+// is not stored for the sum, as it gives them nothing.
 //
 // One invocation builds one tile's cut, walking the quadtree depth first without a stack (the
 // tree is implicit: a node's children and siblings follow from its level and place). On a CPU
@@ -12,8 +13,9 @@
 // neighbours in the lamp's view, so the gather's four interleaved classes (index mod 4) each
 // take an even share of every region.
 //
-// Per tile of the band, `cuts` holds the counts (evaluated, facing away), then the evaluated
-// lights, one vec4 each (see gi_common.wgsl). The tile at the centre of the view also writes
+// Per tile of the band, `cuts` holds the counts (evaluated, facing away), the tile's centre
+// (the stored positions are relative to it), then the evaluated lights, one vec4 each (see
+// gi_common.wgsl). The tile at the centre of the view also writes
 // its whole cut, those facing away included, to `centre_lights` for the `lights` view.
 #include "common.wgsl"
 #include "gi_common.wgsl"
