@@ -53,8 +53,8 @@ const CUTS_GROUP: u32 = 8;
 const CUTS_BUDGET_BYTES: u64 = 32 << 20;
 
 /// How the tiles of an indirect target are gathered: `rows` tile rows at a time, `count`
-/// times, each tile's cut `stride` vec4s (its counts, its centre, then one a light: see
-/// gi_common.wgsl).
+/// times, each tile's cut `stride` vec4s (its counts, its centre, then one a light with room
+/// for the classes' padding: see gi_common.wgsl).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Bands {
     pub tiles: (u32, u32),
@@ -68,7 +68,7 @@ impl Bands {
     pub fn new(size: (u32, u32), tree: &Quadtree, budget: u64) -> Self {
         let (w, h) = tree.size(crate::quadtree::TOP);
         let tiles = (size.0.div_ceil(TILE), size.1.div_ceil(TILE));
-        let stride = 2 + CUT_MAX.max(w * h);
+        let stride = 2 + 2 * CUT_MAX.max(w * h);
         let row_bytes = tiles.0 as u64 * stride as u64 * 16;
         let rows = (budget / row_bytes).clamp(1, tiles.1.max(1) as u64) as u32;
         Self { tiles, stride, rows, count: tiles.1.div_ceil(rows) }
@@ -213,16 +213,16 @@ mod tests {
     fn every_tile_has_room_for_its_cut_and_the_whole_top_level() {
         let small = Quadtree::new(160, 90);
         let one = Bands::new((160, 90), &small, CUTS_BUDGET_BYTES);
-        assert_eq!(one, Bands { tiles: (20, 12), stride: 2 + CUT_MAX, rows: 12, count: 1 });
-        assert_eq!(one.bytes(), 20 * 12 * (2 + CUT_MAX as u64) * 16);
+        assert_eq!(one, Bands { tiles: (20, 12), stride: 2 + 2 * CUT_MAX, rows: 12, count: 1 });
+        assert_eq!(one.bytes(), 20 * 12 * (2 + 2 * CUT_MAX as u64) * 16);
         // A top level of 60×34 lights is more than a cut holds: each tile has room for all.
         let large = Quadtree::new(3840, 2160);
-        assert_eq!(Bands::new((8, 8), &large, CUTS_BUDGET_BYTES).stride, 2 + 60 * 34);
+        assert_eq!(Bands::new((8, 8), &large, CUTS_BUDGET_BYTES).stride, 2 + 2 * 60 * 34);
     }
 
     #[test]
     fn a_large_target_is_gathered_in_bands_within_the_budget() {
-        // 3840×2160 at full resolution: 480×270 tiles, 2,042 vec4s each.
+        // 3840×2160 at full resolution: 480×270 tiles, 4,082 vec4s each.
         let tree = Quadtree::new(3840, 2160);
         let bands = Bands::new((3840, 2160), &tree, CUTS_BUDGET_BYTES);
         assert!(bands.bytes() <= CUTS_BUDGET_BYTES, "{bands:?}");

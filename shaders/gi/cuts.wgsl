@@ -9,9 +9,8 @@
 // One invocation builds one tile's cut, walking the quadtree depth first without a stack (the
 // tree is implicit: a node's children and siblings follow from its level and place). On a CPU
 // device a SIMD row of invocations then walks eight neighbouring tiles in step, with no
-// barriers and no atomics; the order is deterministic, and consecutive lights of the cut are
-// neighbours in the lamp's view, so the gather's four interleaved classes (index mod 4) each
-// take an even share of every region.
+// barriers and no atomics, and the order is deterministic. Each light's interleaved class
+// (for the gather) follows from its place in the tree (see `walk`).
 //
 // Per tile of the band, `cuts` holds the counts (evaluated, facing away), the tile's centre
 // (the stored positions are relative to it), then the evaluated lights, one vec4 each (see
@@ -129,13 +128,19 @@ struct Walk {
     taken: u32,
     away: u32,
     filled: u32,
+    // Lights stored per interleaved class (see `walk`).
+    classes: vec4u,
 };
 
 // Walks the quadtree depth first from the top level, splitting lights by `split_ratio` down to
 // `floor` at the finest, and writes the evaluated lights of the cut from `base` + 2 (and every
-// light of it to `centre_lights` when `centre`).
-fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) -> Walk {
-    var w = Walk(0u, 0u, 0u);
+// light of it to `centre_lights` when `centre`). A light's interleaved class is its place
+// among its siblings (x and y parity), so the four children of a split fall into the four
+// classes and a light keeps its class from frame to frame whatever else the cut gains or
+// loses; it is stored where index mod 4 names its class (`class_slot`). A class that has had
+// half the room already (not seen in practice) takes the next light of another.
+fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool, room: u32) -> Walk {
+    var w = Walk(0u, 0u, 0u, vec4u(0u));
     let top = PYRAMID_LEVELS - 1u;
     let top_level = table.levels[top];
     // The cut's size if nothing more were split: a split adds three.
@@ -162,7 +167,12 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) ->
                         node.flux, select(0.0, 1.0, action == TAKE_AWAY));
                 }
                 if action == TAKE {
-                    cuts[base + 2u + w.taken] = pack_cut_light(node, b.sphere.xyz);
+                    var kind = (place.x & 1u) + 2u * (place.y & 1u);
+                    if w.classes[kind] >= room {
+                        kind = fewest(w.classes);
+                    }
+                    cuts[class_slot(base, kind, w.classes[kind])] = pack_cut_light(node, b.sphere.xyz);
+                    w.classes[kind] += 1u;
                     w.taken++;
                 } else {
                     w.away++;
@@ -202,6 +212,21 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) ->
     return w;
 }
 
+// Where the k-th light of interleaved class c of the cut at `base` is stored.
+fn class_slot(base: u32, c: u32, k: u32) -> u32 {
+    return base + 2u + 4u * k + c;
+}
+
+fn fewest(classes: vec4u) -> u32 {
+    var c = 0u;
+    for (var i = 1u; i < 4u; i++) {
+        if classes[i] < classes[c] {
+            c = i;
+        }
+    }
+    return c;
+}
+
 @compute @workgroup_size(8)
 fn main(@builtin(global_invocation_id) id: vec3u) {
     let tiles = (params.indirect_size + CUT_TILE - 1u) / CUT_TILE;
@@ -218,7 +243,9 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     let base = slot * stride;
     let b = tile_bounds(tile * CUT_TILE);
     let is_centre = all(tile == params.indirect_size / 2u / CUT_TILE);
-    var w = Walk(0u, 0u, 0u);
+    var w = Walk(0u, 0u, 0u, vec4u(0u));
+    // Slots per class: a quarter of the room, which is twice the cut's most lights.
+    let room = (stride - 2u) / 4u;
     if b.count > 0u {
         // A cut that would outgrow CUT_MAX is walked again with a larger split ratio, so a
         // full tile's lights stay as even in size across it as split_ratio makes them rather
@@ -228,7 +255,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
         var floor = params.min_level;
         var ratio = params.split_ratio;
         loop {
-            w = walk(b, floor, ratio, base, is_centre);
+            w = walk(b, floor, ratio, base, is_centre, room);
             if w.filled == 0u || floor >= top {
                 break;
             }
@@ -244,7 +271,15 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
             atomicAdd(&stats.full, 1u);
         }
     }
-    cuts[base] = vec4u(w.taken, w.away, 0u, 0u);
+    // The classes padded to one length with lights that carry no flux, so the sum's loop over
+    // every fourth slot meets only its own class.
+    let per_class = max(max(w.classes.x, w.classes.y), max(w.classes.z, w.classes.w));
+    for (var c = 0u; c < 4u; c++) {
+        for (var k = w.classes[c]; k < per_class; k++) {
+            cuts[class_slot(base, c, k)] = vec4u(0u);
+        }
+    }
+    cuts[base] = vec4u(4u * per_class, w.away, 0u, 0u);
     cuts[base + 1u] = vec4u(bitcast<vec3u>(b.sphere.xyz), 0u);
     if is_centre {
         stats.vertex_count = 6u;

@@ -1,9 +1,10 @@
 // GI gather pass: the irradiance of each receiver (a pixel of the indirect target) from the
 // reflection lights of its 8×8 tile's cut through the flux pyramid (built by cuts.wgsl).
 // The receivers sum E = Φ/π · cos · cos / (d² + A/π) over the cut, interleaved: the cut's
-// lights fall into four classes (index mod 4) and each receiver of a 2×2 pattern evaluates one
-// class itself and takes the other three from its neighbours with that class (a tent filter
-// over its 3×3 neighbourhood) where they lie on its surface. A receiver with no such neighbour
+// lights fall into four classes (cuts.wgsl stores class c at the slots whose index mod 4 is
+// c) and each receiver of a 2×2 pattern evaluates one class itself and takes the other three
+// from its neighbours with that class (a tent filter over its 3×3 neighbourhood) where they
+// lie on its surface. A receiver with no such neighbour
 // for a class, at an edge or a corner, evaluates that class itself. Every light is counted
 // once per receiver either way; smooth surfaces cost a quarter.
 #include "common.wgsl"

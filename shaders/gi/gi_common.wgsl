@@ -144,10 +144,11 @@ struct Band {
     pad1: u32,
 };
 
-// vec4s per tile in the cuts buffer: the counts (evaluated, facing away), the tile's centre,
-// then one a light.
+// vec4s per tile in the cuts buffer: the counts (slots to sum, facing away), the tile's
+// centre, then one a light, with room for twice the most lights (the interleaved classes are
+// padded to one length: see cuts.wgsl).
 fn cut_stride(top_lights: u32) -> u32 {
-    return 2u + max(CUT_MAX, top_lights);
+    return 2u + 2u * max(CUT_MAX, top_lights);
 }
 
 // Per level of the pyramid: offset into the node buffer, width, height.
