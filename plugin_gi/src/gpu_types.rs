@@ -66,7 +66,7 @@ pub struct ReflectionLight {
 
 /// Size in bytes of one pyramid node (see `Node` in gi_common.wgsl).
 pub const NODE_SIZE: u64 = 48;
-/// The gather's counters (see `Stats` in gather.wgsl).
+/// The gather's counters (see `Stats` in cuts.wgsl, which fills them).
 pub const GATHER_STATS_SIZE: u64 = 32;
 /// Capacity of the centre tile's light list.
 pub const CENTRE_LIGHTS: u64 = 8192;

@@ -14,8 +14,8 @@
 //
 // Per tile of the band, `cuts` holds the counts (evaluated, facing away), the tile's centre
 // (the stored positions are relative to it), then the evaluated lights, one vec4 each (see
-// gi_common.wgsl). The tile at the centre of the view also writes
-// its whole cut, those facing away included, to `centre_lights` for the `lights` view.
+// gi_common.wgsl). The tile at the centre of the view also writes its whole cut, those facing
+// away included, to `centre_lights` for the `lights` view.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 

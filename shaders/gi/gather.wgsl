@@ -4,9 +4,9 @@
 // lights fall into four classes (cuts.wgsl stores class c at the slots whose index mod 4 is
 // c) and each receiver of a 2×2 pattern evaluates one class itself and takes the other three
 // from its neighbours with that class (a tent filter over its 3×3 neighbourhood) where they
-// lie on its surface. A receiver with no such neighbour
-// for a class, at an edge or a corner, evaluates that class itself. Every light is counted
-// once per receiver either way; smooth surfaces cost a quarter.
+// lie on its surface. A receiver with no such neighbour for a class, at an edge or a corner,
+// evaluates that class itself. Every light is counted once per receiver either way; smooth
+// surfaces cost a quarter.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -62,6 +62,17 @@ fn same_surface_mask(p: vec2i, x: vec3f, n: vec3f) -> u32 {
         }
     }
     return mask;
+}
+
+// Irradiance at x (normal n) from every `step`-th light of the cut at `base` from `first` on
+// (step 4: one interleaved class; step 1: the whole cut).
+fn cut_irradiance(base: u32, centre: vec3f, first: u32, step: u32, lights: u32, x: vec3f, n: vec3f) -> vec3f {
+    var e = vec3f(0.0);
+    for (var i = first; i < lights; i += step) {
+        let l = unpack_cut_light(cuts[base + 2u + i], centre);
+        e += patch_irradiance(l.flux, l.area, l.position, l.normal, x, n);
+    }
+    return e;
 }
 
 // The tent weight of neighbour k of the 3×3 (½ along each axis it is off the centre).
@@ -124,17 +135,11 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
         // workgroup memory in batches cost a CPU device more (its loads are per lane either
         // way) than the barriers saved.
         if valid {
-            for (var j = own_class; j < lights; j += stride) {
-                let l = unpack_cut_light(cuts[base + 2u + j], centre);
-                own += patch_irradiance(l.flux, l.area, l.position, l.normal, x, n.xyz);
-            }
+            own = cut_irradiance(base, centre, own_class, stride, lights, x, n.xyz);
             // The classes no neighbour on this surface has, evaluated here.
             for (var c = 0u; c < 4u; c++) {
                 if ((lacking >> c) & 1u) != 0u {
-                    for (var i = c; i < lights; i += 4u) {
-                        let l = unpack_cut_light(cuts[base + 2u + i], centre);
-                        e += patch_irradiance(l.flux, l.area, l.position, l.normal, x, n.xyz);
-                    }
+                    e += cut_irradiance(base, centre, c, 4u, lights, x, n.xyz);
                 }
             }
         }
