@@ -51,6 +51,18 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     } else {
         value = textureLoad(source, vec2i(in.position.xy * scale), 0);
     }
+    return shown(value);
+}
+
+// A view rendered at a reduced scale in a filterable format, upsampled by the sampler: the
+// same bilinear weights as `bilinear`, in one sample (the layout binds `source` filterable).
+@fragment
+fn fs_upsample(in: FullscreenOut) -> @location(0) vec4f {
+    return shown(textureSampleLevel(source, linear_clamp, in.position.xy * params.output.zw, 0.0));
+}
+
+// What the output holds for a source value: linear, or a picture of the view.
+fn shown(value: vec4f) -> vec4f {
     let view = params.mode.x;
     if params.mode.y == 1u {
         // Linear: radiance, albedo, the unit normal, or depth in metres as stored.
