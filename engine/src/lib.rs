@@ -4,6 +4,7 @@
 
 pub mod camera;
 pub mod clock;
+pub mod dynamic_resolution;
 pub mod frame;
 pub mod globals;
 pub mod gpu;

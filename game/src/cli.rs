@@ -100,6 +100,11 @@ pub struct BenchArgs {
     /// Render at this fraction of --size and scale up to it, as `play`'s render scale does.
     #[arg(long, default_value_t = 1.0, value_parser = parse_render_scale)]
     pub render_scale: f32,
+    /// Hold this frame rate by dynamic resolution, as `play` does with video.dynamic_resolution:
+    /// the render scale goes from --render-scale (the ceiling) down to 0.25 as needed. The
+    /// camera path runs once untimed for the scale to settle, then timed.
+    #[arg(long, value_name = "FPS", value_parser = parse_target_fps, conflicts_with_all = ["compare", "pan"])]
+    pub target_fps: Option<f32>,
     /// Render every camera with the GI off and on, alternating, and print both frame times and
     /// their ratio: the GI's cost, measured side by side.
     #[arg(long, conflicts_with = "pan")]
@@ -256,6 +261,13 @@ pub fn parse_render_scale(s: &str) -> Result<f32, String> {
     match s.trim().parse::<f32>() {
         Ok(v) if (0.25..=1.0).contains(&v) => Ok(v),
         _ => Err(format!("'{s}': the render scale must be a number from 0.25 to 1")),
+    }
+}
+
+pub fn parse_target_fps(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if (10.0..=144.0).contains(&v) => Ok(v),
+        _ => Err(format!("'{s}': the target frame rate must be a number from 10 to 144")),
     }
 }
 

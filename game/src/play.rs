@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use engine::camera::CameraProjection;
 use engine::clock::FixedClock;
+use engine::dynamic_resolution::DynamicResolution;
 use engine::egui;
 use engine::gpu::Gpu;
 use engine::input::{Input, KeyCode};
@@ -32,21 +33,27 @@ const CONTROLS_HINT_TICKS: u32 = 480;
 /// The F3 overlay reads GPU pass times this often (reading waits for the GPU), frames.
 const TIMING_EVERY: u32 = 30;
 
-/// The render scale a CPU device starts with (with [`plugin_gi::GiSettings::cpu_preset`]):
-/// the Cellar at 15 fps or more with the GI on in the default 1280×720 window, on 2 cores
-/// (`headlamp bench --size 1280x720 --render-scale 0.4 --set gi.min_rows=45`: 25 fps headless).
-pub const CPU_RENDER_SCALE: f32 = 0.4;
+/// The highest render scale a CPU device starts with; dynamic resolution (holding
+/// [`CPU_TARGET_FPS`]) lowers it as far as the machine needs, down to 25 %. Frame costs on
+/// lavapipe differ by more than 2× between 2-core VMs (`headlamp bench --size 1280x720
+/// --render-scale 0.4 --set gi.min_rows=45`: 25 fps on one, 9.3 on a slower one), so no fixed
+/// scale serves both; `bench --target-fps` shows where the controller settles.
+pub const CPU_RENDER_SCALE: f32 = 0.5;
+/// The frame rate a CPU device's dynamic resolution holds: some margin over 15 fps.
+pub const CPU_TARGET_FPS: f32 = 20.0;
 
 /// What the main menu says on a CPU device: the settings that keep it playable, and whether
 /// they are the ones in use.
 fn cpu_note(adapter: &str, config: &Config) -> String {
     let preset = plugin_gi::GiSettings::cpu_preset();
     let chosen = format!(
-        "render scale {:.0} % and at least {} rows of indirect light (gi.min_rows)",
+        "dynamic resolution holding {CPU_TARGET_FPS:.0} fps (render scale 25 to {:.0} %) and at least {} rows of \
+         indirect light (gi.min_rows)",
         CPU_RENDER_SCALE * 100.0,
         preset.min_rows
     );
-    if !config.gi.enabled || (config.render_scale <= CPU_RENDER_SCALE && config.gi.min_rows <= preset.min_rows) {
+    let held = config.dynamic_resolution && config.target_fps >= 15.0 && config.gi.min_rows <= preset.min_rows;
+    if !config.gi.enabled || held {
         format!(
             "{adapter} renders on the CPU. For 15 fps or more with global illumination on, Headlamp \
              uses the CPU settings: {chosen}. Settings > Video and F1 change them."
@@ -132,6 +139,8 @@ pub struct GameWindow {
     since_outcome: f32,
     messages: Messages,
     frame_rate: FrameRate,
+    /// The render scale that holds the target frame rate (`video.dynamic_resolution`).
+    resolution: Option<DynamicResolution>,
     ticks_this_frame: u32,
     overlay_open: bool,
     pass_times: Vec<(String, f64)>,
@@ -170,6 +179,7 @@ impl GameWindow {
             since_outcome: 0.0,
             messages: Messages::default(),
             frame_rate: FrameRate::new(),
+            resolution: None,
             ticks_this_frame: 0,
             overlay_open: false,
             pass_times: Vec::new(),
@@ -249,8 +259,21 @@ impl GameWindow {
             sampler.bindings = self.config.bindings.clone();
         }
         self.view.view.camera.projection = CameraProjection::Perspective { fov_y: self.config.fov_deg.to_radians() };
+        // Dynamic resolution keeps its scale while its target and ceiling stay (a GI setting
+        // changed); a new target or ceiling starts it again from the ceiling.
+        let (fps, max) = (self.config.target_fps, self.config.render_scale);
+        self.resolution = match self.resolution.take() {
+            _ if !self.config.dynamic_resolution => None,
+            Some(d)
+                if (d.target_fps() - fps).abs() < 0.01
+                    && d.max_scale() == max.clamp(DynamicResolution::MIN_SCALE, 1.0) =>
+            {
+                Some(d)
+            }
+            _ => Some(DynamicResolution::new(fps, max)),
+        };
         if let Some(r) = &mut self.renderer {
-            r.set_render_scale(self.config.render_scale);
+            r.set_render_scale(self.resolution.as_ref().map_or(self.config.render_scale, |d| d.scale()));
             r.set_timing(self.overlay_open);
         }
         if let Some(gi) = &self.gi {
@@ -387,6 +410,8 @@ impl GameWindow {
             // Read back with the pass times.
             reflection_lights: self.reflection_lights.unwrap_or(0),
             ticks: self.ticks_this_frame,
+            render_scale: self.renderer.as_ref().map_or(self.config.render_scale, |r| r.render_scale()),
+            target_fps: self.resolution.as_ref().map(|d| d.target_fps()),
         }
     }
 
@@ -415,6 +440,8 @@ impl WindowApp for GameWindow {
         if adapter.device_type == engine::wgpu::DeviceType::Cpu {
             if self.first_run {
                 self.config.render_scale = CPU_RENDER_SCALE;
+                self.config.dynamic_resolution = true;
+                self.config.target_fps = CPU_TARGET_FPS;
                 self.config.gi = plugin_gi::GiSettings::cpu_preset();
                 self.apply_config();
                 self.save_config();
@@ -427,6 +454,11 @@ impl WindowApp for GameWindow {
     fn update(&mut self, input: &Input, dt: f32) {
         self.input = input.clone();
         self.frame_rate.push(dt);
+        if let (Some(d), Some(r)) = (&mut self.resolution, &mut self.renderer) {
+            if let Some(scale) = d.push(dt) {
+                r.set_render_scale(scale);
+            }
+        }
         self.time += dt;
         if input.pressed(KeyCode::F3) {
             self.overlay_open = !self.overlay_open;

@@ -57,16 +57,36 @@ fn bench_of_the_cellar_prints_the_table_and_writes_json() {
 }
 
 #[test]
+fn bench_with_a_target_frame_rate_reports_the_scales_dynamic_resolution_chose() {
+    let json = scratch("dynamic").join("out.json");
+    let level = cellar();
+    let args = ["--size", "96x54", "--frames", "30", "--render-scale", "0.5", "--target-fps", "144"];
+    let out = headlamp(&[&["bench", "--level", level.as_str(), "--json", json.to_str().unwrap()], &args[..]].concat());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "bench failed: {}\n{stdout}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("dynamic resolution holding 144 fps (render scale at most 0.5)"), "{stdout}");
+    let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let d = &report["dynamic_resolution"];
+    let (lowest, highest) = (d["lowest"].as_f64().unwrap(), d["highest"].as_f64().unwrap());
+    assert!((0.25..=highest).contains(&lowest) && highest <= 0.5, "scales {lowest} to {highest}");
+    for frame in report["per_frame"].as_array().unwrap() {
+        let scale = frame["render_scale"].as_f64().unwrap();
+        assert!((lowest..=highest).contains(&scale), "a frame at {scale}");
+    }
+}
+
+#[test]
 fn bench_rejects_bad_input_with_one_line() {
     let dir = scratch("bad");
     let missing = dir.join("nope.gltf");
     let bad_json = dir.join("no_such_dir").join("out.json");
     let cellar = cellar();
-    let cases: [(Vec<&str>, &str); 4] = [
+    let cases: [(Vec<&str>, &str); 5] = [
         (vec!["bench", "--level", missing.to_str().unwrap()], "nope.gltf"),
         (vec!["bench", "--level", &cellar, "--frames", "0"], "--frames"),
         (vec!["bench", "--level", &cellar, "--set", "gi.split_ratio=9"], "split_ratio"),
         (vec!["bench", "--level", &cellar, "--json", bad_json.to_str().unwrap()], "--json"),
+        (vec!["bench", "--level", &cellar, "--target-fps", "5"], "--target-fps"),
     ];
     for (args, needle) in cases {
         let out = headlamp(&args);

@@ -11,6 +11,7 @@ use std::time::Instant;
 
 use anyhow::{anyhow, Context};
 use engine::camera::Camera;
+use engine::dynamic_resolution::DynamicResolution;
 use engine::frame::ViewState;
 use engine::glam::{Quat, Vec3};
 use engine::gpu::Gpu;
@@ -134,6 +135,8 @@ pub struct FrameFigure {
     /// Σ of the pass times, when the device has timestamps.
     pub gpu_ms: Option<f64>,
     pub passes: Vec<(String, f64)>,
+    /// The render scale the frame was drawn at.
+    pub render_scale: f32,
 }
 
 #[derive(Serialize, Debug)]
@@ -159,11 +162,22 @@ pub struct ErrorFigure {
 }
 
 #[derive(Serialize, Debug)]
+pub struct DynamicFigure {
+    pub target_fps: f32,
+    pub render_scale: Spread,
+    pub lowest: f32,
+    pub highest: f32,
+}
+
+#[derive(Serialize, Debug)]
 pub struct Report {
     pub level: String,
     pub size: [u32; 2],
     /// Rendered at this fraction of `size`, then scaled up (as `play`'s render scale).
     pub render_scale: f32,
+    /// With `--target-fps`: the frame rate dynamic resolution held, and the scales it chose
+    /// over the timed frames.
+    pub dynamic_resolution: Option<DynamicFigure>,
     pub frames: usize,
     pub warmup_frames: usize,
     pub adapter: String,
@@ -232,18 +246,44 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
         renderer.render(gpu, &view, &target.texture, &target.view)?;
         gpu.wait_idle();
     }
+    let mut dynamic = args.target_fps.map(|fps| DynamicResolution::new(fps, args.render_scale));
+    if let Some(d) = &mut dynamic {
+        // The path once untimed: the scale settles as in a player's first seconds.
+        for i in 0..n {
+            view.camera = path.camera(i, n);
+            let start = Instant::now();
+            renderer.render(gpu, &view, &target.texture, &target.view)?;
+            gpu.wait_idle();
+            if let Some(scale) = d.push(start.elapsed().as_secs_f32()) {
+                renderer.set_render_scale(scale);
+            }
+        }
+    }
     let mut per_frame = Vec::with_capacity(n);
     for i in 0..n {
         view.camera = path.camera(i, n);
+        let render_scale = renderer.render_scale();
         let start = Instant::now();
         renderer.render(gpu, &view, &target.texture, &target.view)?;
         gpu.wait_idle();
         let cpu_ms = start.elapsed().as_secs_f64() * 1e3;
+        if let Some(scale) = dynamic.as_mut().and_then(|d| d.push((cpu_ms / 1e3) as f32)) {
+            renderer.set_render_scale(scale);
+        }
         // Read after the timed window: the readback's map and wait are not part of the frame.
         let passes = renderer.last_pass_times(gpu).unwrap_or_default();
         let gpu_ms = (!passes.is_empty()).then(|| passes.iter().map(|(_, ms)| ms).sum());
-        per_frame.push(FrameFigure { cpu_ms, gpu_ms, passes });
+        per_frame.push(FrameFigure { cpu_ms, gpu_ms, passes, render_scale });
     }
+    let dynamic_resolution = dynamic.map(|d| {
+        let scales: Vec<f64> = per_frame.iter().map(|f| f.render_scale as f64).collect();
+        DynamicFigure {
+            target_fps: d.target_fps(),
+            render_scale: Spread::of(&scales),
+            lowest: per_frame.iter().map(|f| f.render_scale).fold(f32::INFINITY, f32::min),
+            highest: per_frame.iter().map(|f| f.render_scale).fold(0.0, f32::max),
+        }
+    });
     renderer.set_timing(false);
     let stats = handle.stats();
 
@@ -302,6 +342,7 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
         level: args.level.display().to_string(),
         size: [w, h],
         render_scale: args.render_scale,
+        dynamic_resolution,
         frames: n,
         warmup_frames: WARMUP_FRAMES,
         adapter: info.name,
@@ -330,6 +371,17 @@ pub fn table(r: &Report) -> String {
         r.level, r.size[0], r.size[1], r.render_scale, r.frames, r.warmup_frames, r.adapter, r.backend
     );
     let _ = writeln!(s, "camera: {}", r.camera_path);
+    if let Some(d) = &r.dynamic_resolution {
+        let _ = writeln!(
+            s,
+            "dynamic resolution holding {:.0} fps (render scale at most {}): the timed frames at render scale median {:.0} % ({:.0} to {:.0} %), after one untimed pass of the path",
+            d.target_fps,
+            r.render_scale,
+            d.render_scale.median * 100.0,
+            d.lowest * 100.0,
+            d.highest * 100.0
+        );
+    }
     let _ = writeln!(
         s,
         "GI: {}, split ratio {}, indirect target at {} of the view, {} bounce(s)",

@@ -184,11 +184,19 @@ fn restarting_a_recording_keeps_the_first_attempt() {
 
 #[test]
 fn the_cpu_note_says_whether_the_cpu_settings_are_in_use() {
-    let mut config =
-        Config { render_scale: CPU_RENDER_SCALE, gi: plugin_gi::GiSettings::cpu_preset(), ..Config::default() };
+    let mut config = Config {
+        render_scale: CPU_RENDER_SCALE,
+        dynamic_resolution: true,
+        target_fps: CPU_TARGET_FPS,
+        gi: plugin_gi::GiSettings::cpu_preset(),
+        ..Config::default()
+    };
     let note = cpu_note("llvmpipe", &config);
-    assert!(note.contains("uses the CPU settings: render scale 40 %") && note.contains("gi.min_rows"), "{note}");
-    config.render_scale = 1.0;
+    assert!(
+        note.contains("uses the CPU settings: dynamic resolution holding 20 fps") && note.contains("gi.min_rows"),
+        "{note}"
+    );
+    config.dynamic_resolution = false;
     let note = cpu_note("llvmpipe", &config);
     assert!(note.contains("heavier than its defaults"), "{note}");
     config.gi.enabled = false;

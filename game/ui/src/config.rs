@@ -30,6 +30,10 @@ pub struct Config {
     pub fov_deg: f32,
     /// The 3D view's resolution relative to the window, in [`Config::RENDER_SCALE_RANGE`].
     pub render_scale: f32,
+    /// Lower the render scale (down to 25 %, up to `render_scale`) to hold `target_fps`.
+    pub dynamic_resolution: bool,
+    /// The frame rate dynamic resolution holds, in [`Config::TARGET_FPS_RANGE`].
+    pub target_fps: f32,
     pub vsync: bool,
     /// The frame-rate counter in a corner.
     pub show_fps: bool,
@@ -45,6 +49,8 @@ impl Default for Config {
             // The engine's own default (`start_view::DEFAULT_FOV_Y`): the game looks as before.
             fov_deg: 60.0,
             render_scale: 1.0,
+            dynamic_resolution: false,
+            target_fps: 30.0,
             vsync: true,
             show_fps: false,
             bindings: KeyBindings::default(),
@@ -59,6 +65,7 @@ impl Config {
     pub const SENSITIVITY_RANGE: RangeInclusive<f32> = 0.1..=10.0;
     pub const FOV_RANGE: RangeInclusive<f32> = 50.0..=110.0;
     pub const RENDER_SCALE_RANGE: RangeInclusive<f32> = 0.25..=1.0;
+    pub const TARGET_FPS_RANGE: RangeInclusive<f32> = 10.0..=144.0;
 
     /// Radians of view rotation per pixel of mouse motion.
     pub fn radians_per_pixel(&self) -> f32 {

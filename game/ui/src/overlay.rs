@@ -15,6 +15,10 @@ pub struct OverlayInfo {
     pub reflection_lights: u32,
     /// Simulation ticks run this frame.
     pub ticks: u32,
+    /// The 3D view's resolution relative to the window now.
+    pub render_scale: f32,
+    /// The frame rate dynamic resolution holds, when it is on.
+    pub target_fps: Option<f32>,
 }
 
 /// Below the corner's first line, which `headlamp record`/`replay` use for their status.
@@ -41,6 +45,10 @@ pub fn table(info: &OverlayInfo) -> String {
     let row = |name: &str, value: String| format!("{name:<13}{value:>13}\n");
     let mut out = row("fps", format!("{:.1}", info.fps));
     out += &row("frame ms", format!("{:.2}", info.frame_ms));
+    out += &row("render scale", format!("{:.0} %", info.render_scale * 100.0));
+    if let Some(fps) = info.target_fps {
+        out += &row(" dynamic", format!("{fps:.0} fps"));
+    }
     if info.pass_times_ms.is_empty() {
         out += &row("GPU ms", "off".into());
     } else {
@@ -142,6 +150,8 @@ mod tests {
             pass_times_ms: vec![("gbuffer".into(), 1.25), ("gi_shade".into(), 3.5)],
             reflection_lights: 1234,
             ticks: 1,
+            render_scale: 0.33,
+            target_fps: Some(20.0),
         };
         let text = table(&info);
         let lines: Vec<&str> = text.lines().collect();
@@ -151,6 +161,8 @@ mod tests {
         assert!(lines.contains(&" gi_shade            3.500"), "{text}");
         assert!(lines.contains(&" total               4.750"), "{text}");
         assert!(lines.contains(&"GI lights        1234/tile"), "{text}");
+        assert!(lines.contains(&"render scale          33 %"), "{text}");
+        assert!(lines.contains(&" dynamic            20 fps"), "{text}");
         assert!(lines.iter().all(|l| l.chars().count() == lines[0].chars().count()), "aligned:\n{text}");
         assert!(table(&OverlayInfo::default()).contains("GPU ms                 off"));
 

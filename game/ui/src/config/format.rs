@@ -22,7 +22,7 @@ pub(super) struct ParseError {
 
 const SECTIONS: [&str; 4] = ["controls", "video", "bindings", "gi"];
 const CONTROLS: [&str; 3] = ["sensitivity", "invert_y", "fov_deg"];
-const VIDEO: [&str; 3] = ["render_scale", "vsync", "show_fps"];
+const VIDEO: [&str; 5] = ["render_scale", "dynamic_resolution", "target_fps", "vsync", "show_fps"];
 
 pub(super) fn write(c: &Config) -> String {
     let range = |r: &RangeInclusive<f32>| format!("{:?} to {:?}", r.start(), r.end());
@@ -45,6 +45,10 @@ pub(super) fn write(c: &Config) -> String {
          [video]\n\
          # 3D view resolution relative to the window ({scale})\n\
          render_scale = {:?}\n\
+         # lower the render scale (to 25 % at least, to render_scale at most) to hold target_fps\n\
+         dynamic_resolution = {}\n\
+         # frames per second that dynamic resolution holds ({fps})\n\
+         target_fps = {:?}\n\
          vsync = {}\n\
          show_fps = {}\n\
          \n\
@@ -55,12 +59,15 @@ pub(super) fn write(c: &Config) -> String {
         c.invert_y,
         c.fov_deg,
         c.render_scale,
+        c.dynamic_resolution,
+        c.target_fps,
         c.vsync,
         c.show_fps,
         base = Config::BASE_RADIANS_PER_PIXEL,
         sens = range(&Config::SENSITIVITY_RANGE),
         fov = range(&Config::FOV_RANGE),
         scale = range(&Config::RENDER_SCALE_RANGE),
+        fps = range(&Config::TARGET_FPS_RANGE),
     );
     for action in Action::ALL {
         let names: Vec<String> = c.bindings.bindings(action).map(|b| format!("\"{b}\"")).collect();
@@ -136,6 +143,8 @@ pub(super) fn parse(text: &str) -> Result<Config, ParseError> {
         let value = value.get_ref();
         let set = match key.get_ref().as_str() {
             "render_scale" => number(value, &Config::RENDER_SCALE_RANGE).map(|v| c.render_scale = v),
+            "dynamic_resolution" => boolean(value).map(|v| c.dynamic_resolution = v),
+            "target_fps" => number(value, &Config::TARGET_FPS_RANGE).map(|v| c.target_fps = v),
             "vsync" => boolean(value).map(|v| c.vsync = v),
             "show_fps" => boolean(value).map(|v| c.show_fps = v),
             _ => Err(unknown(&VIDEO)),

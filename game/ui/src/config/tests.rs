@@ -42,6 +42,8 @@ fn changed() -> Config {
         invert_y: true,
         fov_deg: 93.3,
         render_scale: 0.6,
+        dynamic_resolution: true,
+        target_fps: 24.5,
         vsync: false,
         show_fps: true,
         bindings,
@@ -56,6 +58,7 @@ fn every_setting_survives_save_and_load() {
     // The test is only as good as this: every field is off its default.
     assert!(c.mouse_sensitivity != d.mouse_sensitivity && c.invert_y != d.invert_y && c.fov_deg != d.fov_deg);
     assert!(c.render_scale != d.render_scale && c.vsync != d.vsync && c.show_fps != d.show_fps);
+    assert!(c.dynamic_resolution != d.dynamic_resolution && c.target_fps != d.target_fps);
     for action in [Action::Jump, Action::Fire, Action::MoveForward, Action::Crouch] {
         assert_ne!(c.bindings.get(action), d.bindings.get(action), "{action:?}");
     }

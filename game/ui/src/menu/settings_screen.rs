@@ -197,7 +197,15 @@ fn video(ui: &mut egui::Ui, config: &mut Config) {
         .custom_formatter(|v, _| format!("{:.0}%", v * 100.0))
         .custom_parser(|s| s.trim().trim_end_matches('%').trim().parse::<f64>().ok().map(|p| p / 100.0))
         .text("Render scale");
-    ui.add(scale).on_hover_text("the 3D view's resolution relative to the window: lower is faster");
+    ui.add(scale).on_hover_text(if config.dynamic_resolution {
+        "the highest resolution of the 3D view relative to the window: dynamic resolution goes no higher"
+    } else {
+        "the 3D view's resolution relative to the window: lower is faster"
+    });
+    ui.checkbox(&mut config.dynamic_resolution, "Dynamic resolution")
+        .on_hover_text("lower the render scale, down to 25 %, while frames are slower than the target frame rate");
+    let fps = egui::Slider::new(&mut config.target_fps, Config::TARGET_FPS_RANGE).fixed_decimals(0).text("Target FPS");
+    ui.add_enabled(config.dynamic_resolution, fps).on_hover_text("the frame rate dynamic resolution holds");
     ui.checkbox(&mut config.vsync, "VSync").on_hover_text("wait for the display: no tearing, a little more latency");
     ui.checkbox(&mut config.show_fps, "Show FPS");
 }

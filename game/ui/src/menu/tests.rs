@@ -324,6 +324,12 @@ fn video_and_gi_settings_change_the_config() {
     h.settle();
     assert_eq!(h.click("Show FPS"), Some(MenuAction::ConfigChanged));
     assert!(h.config.show_fps);
+    assert_eq!(h.click("Dynamic resolution"), Some(MenuAction::ConfigChanged));
+    assert!(h.config.dynamic_resolution);
+    h.settle();
+    let at = h.slider_point("Target FPS", 0.02);
+    assert_eq!(h.click_at(at, egui::PointerButton::Primary), Some(MenuAction::ConfigChanged));
+    assert!(h.config.target_fps < 15.0, "{}", h.config.target_fps);
     assert_eq!(h.click("Global illumination"), None);
     assert_eq!(h.click("enabled"), Some(MenuAction::ConfigChanged));
     assert!(!h.config.gi.enabled);
