@@ -2,8 +2,8 @@
 // target: geometry-aware upsampling of E (depth and normal weights against the four nearest
 // samples), then L_i = ρ/π · E. Two passes draw it: `gi_composite` adds it to the frame's HDR
 // radiance (additive blending) and `gi_indirect_view` writes it alone for the `indirect` view,
-// only when something shows that. The target's alpha holds each sample's depth, so only its
-// normal is looked up.
+// only when something shows that. The target's alpha holds each sample's depth and normal
+// (`pack_receiver`), so nothing else is looked up for it.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -49,18 +49,19 @@ fn indirect_radiance(p: vec2i) -> vec4f {
         let o = vec2i(i & 1, i >> 1u);
         let s = clamp(base + o, vec2i(0), vec2i(low) - 1);
         let sample = textureLoad(irradiance, s, 0);
-        // The G-buffer texel the gather evaluated for sample s.
-        let sn = textureLoad(gbuffer_normal, receiver_texel(vec2u(s), full, params.indirect_size), 0);
+        // The depth and normal of the G-buffer texel the gather evaluated for sample s.
+        let surface = bitcast<u32>(sample.w) != 0u;
+        let sn = receiver_normal(sample.w);
         let bilinear = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
-        let depth_err = abs(sample.w - depth) / max(depth, 1e-3);
-        let facing = max(0.0, dot(sn.xyz, normal.xyz));
+        let depth_err = abs(receiver_depth(sample.w) - depth) / max(depth, 1e-3);
+        let facing = max(0.0, dot(sn, normal.xyz));
         let facing2 = facing * facing;
         let facing4 = facing2 * facing2;
-        let geometric = select(0.0, facing4 * facing4, sn.w > 0.0) * exp(-depth_err * 20.0);
+        let geometric = select(0.0, facing4 * facing4, surface) * exp(-depth_err * 20.0);
         sum += sample.rgb * bilinear * geometric;
         total += bilinear * geometric;
-        let err = depth_err + (1.0 - dot(sn.xyz, normal.xyz));
-        if sn.w > 0.0 && err < nearest_err {
+        let err = depth_err + (1.0 - dot(sn, normal.xyz));
+        if surface && err < nearest_err {
             nearest_err = err;
             nearest = sample.rgb;
         }

@@ -168,7 +168,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
             textureStore(bounce_out, vec2i(q), vec4f(e, 1.0));
             total += textureLoad(accumulate, vec2i(q), 0).rgb;
         }
-        // The receiver's depth rides along for the composite's upsampling.
-        textureStore(irradiance_out, vec2i(q), vec4f(total, depth));
+        // The receiver's depth and normal ride along for the composite's upsampling.
+        textureStore(irradiance_out, vec2i(q), vec4f(total, select(0.0, pack_receiver(depth, n.xyz), valid)));
     }
 }

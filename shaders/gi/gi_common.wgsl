@@ -113,6 +113,34 @@ fn unpack_normal(v: u32) -> vec3f {
     return normalize(n);
 }
 
+// A receiver's depth and normal in the irradiance target's alpha, for the composite's
+// geometry-aware upsampling (one load a sample instead of two): the depth as f16 in the high
+// half, the octahedral normal in 2 × 8 bits in the low half; 0 where there is no surface. The
+// depth is positive and at least the near plane, so the f16's exponent is neither 0 nor 31 and
+// the word, read as f32, is never a NaN, an infinity or a denormal: it survives any f32 store.
+fn pack_receiver(depth: f32, normal: vec3f) -> f32 {
+    let n = normal / (abs(normal.x) + abs(normal.y) + abs(normal.z) + 1e-20);
+    var oct = n.xy;
+    if n.z < 0.0 {
+        oct = (1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0));
+    }
+    let d = pack2x16float(vec2f(max(depth, 1e-3), 0.0)) << 16u;
+    return bitcast<f32>(d | (pack4x8snorm(vec4f(oct, 0.0, 0.0)) & 0xffffu));
+}
+
+fn receiver_depth(packed: f32) -> f32 {
+    return unpack2x16float(bitcast<u32>(packed) >> 16u).x;
+}
+
+fn receiver_normal(packed: f32) -> vec3f {
+    let oct = unpack4x8snorm(bitcast<u32>(packed)).xy;
+    var n = vec3f(oct, 1.0 - abs(oct.x) - abs(oct.y));
+    if n.z < 0.0 {
+        n = vec3f((1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0)), n.z);
+    }
+    return normalize(n);
+}
+
 // What pack_normal never gives (it writes −1 as −32767): "no surface here".
 const NO_NORMAL: u32 = 0x80008000u;
 
