@@ -94,23 +94,31 @@ fn unpack_cut_light(v: vec4u, centre: vec3f) -> CutLight {
     return CutLight(centre + vec3f(xy, z_side.x), z_side.y * z_side.y, unpack_rgb9e5(v.z), unpack_normal(v.w));
 }
 
-// A unit normal in 32 bits: octahedral, 2×16 bits (snorm; never 0x80008000, see NO_NORMAL).
-fn pack_normal(normal: vec3f) -> u32 {
+// A unit normal on the octahedron's square, [-1, 1]², the lower half folded over the upper.
+fn octahedral(normal: vec3f) -> vec2f {
     let n = normal / (abs(normal.x) + abs(normal.y) + abs(normal.z) + 1e-20);
     var oct = n.xy;
     if n.z < 0.0 {
         oct = (1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0));
     }
-    return pack2x16snorm(oct);
+    return oct;
 }
 
-fn unpack_normal(v: u32) -> vec3f {
-    let oct = unpack2x16snorm(v);
+fn from_octahedral(oct: vec2f) -> vec3f {
     var n = vec3f(oct, 1.0 - abs(oct.x) - abs(oct.y));
     if n.z < 0.0 {
         n = vec3f((1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0)), n.z);
     }
     return normalize(n);
+}
+
+// A unit normal in 32 bits: octahedral, 2×16 bits (snorm; never 0x80008000, see NO_NORMAL).
+fn pack_normal(normal: vec3f) -> u32 {
+    return pack2x16snorm(octahedral(normal));
+}
+
+fn unpack_normal(v: u32) -> vec3f {
+    return from_octahedral(unpack2x16snorm(v));
 }
 
 // A receiver's depth and normal in the irradiance target's alpha, for the composite's
@@ -119,13 +127,8 @@ fn unpack_normal(v: u32) -> vec3f {
 // depth is positive and at least the near plane, so the f16's exponent is neither 0 nor 31 and
 // the word, read as f32, is never a NaN, an infinity or a denormal: it survives any f32 store.
 fn pack_receiver(depth: f32, normal: vec3f) -> f32 {
-    let n = normal / (abs(normal.x) + abs(normal.y) + abs(normal.z) + 1e-20);
-    var oct = n.xy;
-    if n.z < 0.0 {
-        oct = (1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0));
-    }
     let d = pack2x16float(vec2f(max(depth, 1e-3), 0.0)) << 16u;
-    return bitcast<f32>(d | (pack4x8snorm(vec4f(oct, 0.0, 0.0)) & 0xffffu));
+    return bitcast<f32>(d | (pack4x8snorm(vec4f(octahedral(normal), 0.0, 0.0)) & 0xffffu));
 }
 
 fn receiver_depth(packed: f32) -> f32 {
@@ -133,12 +136,7 @@ fn receiver_depth(packed: f32) -> f32 {
 }
 
 fn receiver_normal(packed: f32) -> vec3f {
-    let oct = unpack4x8snorm(bitcast<u32>(packed)).xy;
-    var n = vec3f(oct, 1.0 - abs(oct.x) - abs(oct.y));
-    if n.z < 0.0 {
-        n = vec3f((1.0 - abs(n.yx)) * select(vec2f(-1.0), vec2f(1.0), n.xy >= vec2f(0.0)), n.z);
-    }
-    return normalize(n);
+    return from_octahedral(unpack4x8snorm(bitcast<u32>(packed)).xy);
 }
 
 // What pack_normal never gives (it writes −1 as −32767): "no surface here".
