@@ -164,7 +164,10 @@ pub struct ErrorFigure {
 #[derive(Serialize, Debug)]
 pub struct DynamicFigure {
     pub target_fps: f32,
+    /// The render scales of the timed frames.
     pub render_scale: Spread,
+    /// Their least and greatest, as the frames record them (f32, so they compare exactly
+    /// with `per_frame`; the spread's are f64).
     pub lowest: f32,
     pub highest: f32,
 }
@@ -247,21 +250,12 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
         gpu.wait_idle();
     }
     let mut dynamic = args.target_fps.map(|fps| DynamicResolution::new(fps, args.render_scale));
-    if let Some(d) = &mut dynamic {
-        // The path once untimed: the scale settles as in a player's first seconds.
-        for i in 0..n {
-            view.camera = path.camera(i, n);
-            let start = Instant::now();
-            renderer.render(gpu, &view, &target.texture, &target.view)?;
-            gpu.wait_idle();
-            if let Some(scale) = d.push(start.elapsed().as_secs_f32()) {
-                renderer.set_render_scale(scale);
-            }
-        }
-    }
+    // With dynamic resolution the path runs once untimed first: the scale settles as in a
+    // player's first seconds.
+    let untimed = if dynamic.is_some() { n } else { 0 };
     let mut per_frame = Vec::with_capacity(n);
-    for i in 0..n {
-        view.camera = path.camera(i, n);
+    for k in 0..untimed + n {
+        view.camera = path.camera(k % n, n);
         let render_scale = renderer.render_scale();
         let start = Instant::now();
         renderer.render(gpu, &view, &target.texture, &target.view)?;
@@ -269,6 +263,9 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
         let cpu_ms = start.elapsed().as_secs_f64() * 1e3;
         if let Some(scale) = dynamic.as_mut().and_then(|d| d.push((cpu_ms / 1e3) as f32)) {
             renderer.set_render_scale(scale);
+        }
+        if k < untimed {
+            continue;
         }
         // Read after the timed window: the readback's map and wait are not part of the frame.
         let passes = renderer.last_pass_times(gpu).unwrap_or_default();
