@@ -261,16 +261,11 @@ impl GameWindow {
         self.view.view.camera.projection = CameraProjection::Perspective { fov_y: self.config.fov_deg.to_radians() };
         // Dynamic resolution keeps its scale while its target and ceiling stay (a GI setting
         // changed); a new target or ceiling starts it again from the ceiling.
-        let (fps, max) = (self.config.target_fps, self.config.render_scale);
+        let fresh = DynamicResolution::new(self.config.target_fps, self.config.render_scale);
         self.resolution = match self.resolution.take() {
             _ if !self.config.dynamic_resolution => None,
-            Some(d)
-                if (d.target_fps() - fps).abs() < 0.01
-                    && d.max_scale() == max.clamp(DynamicResolution::MIN_SCALE, 1.0) =>
-            {
-                Some(d)
-            }
-            _ => Some(DynamicResolution::new(fps, max)),
+            Some(d) if d.target_fps() == fresh.target_fps() && d.max_scale() == fresh.max_scale() => Some(d),
+            _ => Some(fresh),
         };
         if let Some(r) = &mut self.renderer {
             r.set_render_scale(self.resolution.as_ref().map_or(self.config.render_scale, |d| d.scale()));
