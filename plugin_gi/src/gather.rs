@@ -1,6 +1,8 @@
 //! The gather: each pixel of the indirect target sums the irradiance of the pyramid's lights,
-//! an 8×8 tile sharing one cut through the pyramid. Two dispatches: the cuts, one invocation
-//! a tile (shaders/gi/cuts.wgsl), then the sum, one workgroup a tile (shaders/gi/gather.wgsl).
+//! an 8×8 tile sharing one cut through the pyramid. Three dispatches: the cuts, one invocation
+//! a tile, then the few tiles whose cut filled up walked again side by side (an indirect
+//! dispatch; both shaders/gi/cuts.wgsl), then the sum, one workgroup a tile
+//! (shaders/gi/gather.wgsl).
 
 use engine::wgpu;
 
@@ -31,12 +33,28 @@ pub struct Gather {
     params: wgpu::Buffer,
     cuts_layout: wgpu::BindGroupLayout,
     cuts_pipeline: wgpu::ComputePipeline,
+    /// The indirect dispatch's arguments, written by the cuts pass (its group 2).
+    retry_args_layout: wgpu::BindGroupLayout,
+    retry_pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
     /// The cuts of one band of tile rows, sized to the last indirect target and pyramid
-    /// (see [`Bands`]), and each band's first row (a uniform each).
-    cuts: Option<(Bands, wgpu::Buffer, Vec<wgpu::Buffer>)>,
+    /// (see [`Bands`]), and per band its first row (a uniform) and its full tiles.
+    cuts: Option<(Bands, wgpu::Buffer, Vec<BandBuffers>)>,
 }
+
+/// What one band's dispatches share besides the cuts.
+struct BandBuffers {
+    /// The band's first row and its number of rows.
+    first: wgpu::Buffer,
+    /// The tiles whose first walk filled the cut (a count, then a slot and a ratio each).
+    retry: wgpu::Buffer,
+    /// The workgroups of the retry dispatch, as its indirect arguments.
+    retry_args: wgpu::Buffer,
+}
+
+/// Bytes of a band's retry list's header (its count, padded to a vec4).
+const RETRY_HEADER: u64 = 16;
 
 /// Receivers per tile side (`CUT_TILE` in gi_common.wgsl).
 pub const TILE: u32 = 8;
@@ -96,8 +114,10 @@ impl Gather {
                 storage(false),
                 storage(false),
                 S::Uniform,
+                storage(false),
             ],
         );
+        let retry_args_layout = layout(device, "gi cuts retry arguments", &[storage(false)]);
         let layout = layout(
             device,
             "gi gather",
@@ -114,11 +134,23 @@ impl Gather {
             ],
         );
         let cuts_module = module(device, "gi cuts", CUTS_SHADER);
-        let cuts_pipeline =
-            compute_pipeline(device, "gi cuts", &cuts_module, "main", &[Some(globals), Some(&cuts_layout)]);
+        let cuts_pipeline = compute_pipeline(
+            device,
+            "gi cuts",
+            &cuts_module,
+            "main",
+            &[Some(globals), Some(&cuts_layout), Some(&retry_args_layout)],
+        );
+        let retry_pipeline = compute_pipeline(
+            device,
+            "gi cuts retry",
+            &cuts_module,
+            "retry_full_tiles",
+            &[Some(globals), Some(&cuts_layout)],
+        );
         let module = module(device, "gi gather", GATHER_SHADER);
         let pipeline = compute_pipeline(device, "gi gather", &module, "main", &[Some(globals), Some(&layout)]);
-        Self { params, cuts_layout, cuts_pipeline, layout, pipeline, cuts: None }
+        Self { params, cuts_layout, cuts_pipeline, retry_args_layout, retry_pipeline, layout, pipeline, cuts: None }
     }
 
     /// Records the gather into an indirect target of `size`; returns the number of dispatches.
@@ -140,23 +172,44 @@ impl Gather {
                 usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
             });
-            let firsts = (0..bands.count)
-                .map(|i| {
-                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            let tiles_per_band = u64::from(bands.tiles.0 * bands.rows);
+            let per_band = (0..bands.count)
+                .map(|i| BandBuffers {
+                    first: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some("gi band"),
                         contents: bytemuck::cast_slice(&[i * bands.rows, bands.rows, 0, 0]),
                         usage: wgpu::BufferUsages::UNIFORM,
-                    })
+                    }),
+                    retry: device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("gi cuts retry"),
+                        size: RETRY_HEADER + 8 * tiles_per_band,
+                        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    }),
+                    retry_args: device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("gi cuts retry arguments"),
+                        size: 12,
+                        usage: wgpu::BufferUsages::STORAGE
+                            | wgpu::BufferUsages::INDIRECT
+                            | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    }),
                 })
                 .collect();
-            self.cuts = Some((bands, buffer, firsts));
+            self.cuts = Some((bands, buffer, per_band));
         }
-        let (_, cuts, firsts) = self.cuts.as_ref().expect("sized above");
+        let (_, cuts, per_band) = self.cuts.as_ref().expect("sized above");
         encoder.clear_buffer(t.stats, 0, Some(GATHER_STATS_SIZE));
+        for band in per_band {
+            // The cuts pass sets the arguments' y and z, and counts x up from 0.
+            encoder.clear_buffer(&band.retry, 0, Some(RETRY_HEADER));
+            encoder.clear_buffer(&band.retry_args, 0, None);
+        }
         let mut pass = encoder
             .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi gather"), timestamp_writes: None });
         pass.set_bind_group(0, globals, &[]);
-        for first in firsts {
+        for band in per_band {
+            let first = &band.first;
             let cuts_group = bind(
                 device,
                 &self.cuts_layout,
@@ -170,8 +223,10 @@ impl Gather {
                     R::Buffer(t.stats),
                     R::Buffer(t.lights),
                     R::Buffer(first),
+                    R::Buffer(&band.retry),
                 ],
             );
+            let retry_args = bind(device, &self.retry_args_layout, &[R::Buffer(&band.retry_args)]);
             let group = bind(
                 device,
                 &self.layout,
@@ -189,12 +244,16 @@ impl Gather {
             );
             pass.set_pipeline(&self.cuts_pipeline);
             pass.set_bind_group(1, &cuts_group, &[]);
+            pass.set_bind_group(2, &retry_args, &[]);
             pass.dispatch_workgroups((bands.tiles.0 * bands.rows).div_ceil(CUTS_GROUP), 1, 1);
+            pass.set_pipeline(&self.retry_pipeline);
+            pass.set_bind_group(1, &cuts_group, &[]);
+            pass.dispatch_workgroups_indirect(&band.retry_args, 0);
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(1, &group, &[]);
             pass.dispatch_workgroups(bands.tiles.0, bands.rows, 1);
         }
-        2 * bands.count
+        3 * bands.count
     }
 }
 

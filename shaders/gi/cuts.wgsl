@@ -9,8 +9,9 @@
 // One invocation builds one tile's cut, walking the quadtree depth first without a stack (the
 // tree is implicit: a node's children and siblings follow from its level and place). On a CPU
 // device a SIMD row of invocations then walks eight neighbouring tiles in step, with no
-// barriers and no atomics, and the order is deterministic. Each light's interleaved class
-// (for the gather) follows from its place in the tree (see `walk`).
+// barriers, and the order is deterministic. Each light's interleaved class (for the gather)
+// follows from its place in the tree (see `walk`). The few tiles whose cut fills up are listed
+// and walked again by a second, indirect dispatch (`retry_full_tiles`), packed side by side.
 //
 // Per tile of the band, `cuts` holds the counts (evaluated, facing away), the tile's centre
 // (the stored positions are relative to it), then the evaluated lights, one vec4 each (see
@@ -130,7 +131,24 @@ struct Walk {
     filled: u32,
     // Lights stored per interleaved class (see `walk`).
     classes: vec4u,
+    // When filled: the share of the tree walked by then (see `walked_share`).
+    share: f32,
 };
+
+// The share of the quadtree a depth-first walk has passed when it is at `place` of `level`:
+// the top-level lights before it in raster order, plus its own place in depth-first order
+// within its top-level light (children go (0,0), (1,0), (0,1), (1,1)).
+fn walked_share(level: u32, place: vec2u) -> f32 {
+    let top = PYRAMID_LEVELS - 1u;
+    let top_level = table.levels[top];
+    var within = 0.0;
+    var p = place;
+    for (var l = level; l < top; l++) {
+        within = (within + f32((p.x & 1u) + 2u * (p.y & 1u))) * 0.25;
+        p /= 2u;
+    }
+    return (f32(p.y * top_level.y + p.x) + within) / f32(top_level.y * top_level.z);
+}
 
 // Walks the quadtree depth first from the top level, splitting lights by `split_ratio` down to
 // `floor` at the finest, and writes the evaluated lights of the cut from `base` + 2 (and every
@@ -140,7 +158,7 @@ struct Walk {
 // loses; it is stored where index mod 4 names its class (`class_slot`). A class that has had
 // half the room already (not seen in practice) takes the next light of another.
 fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool, room: u32) -> Walk {
-    var w = Walk(0u, 0u, 0u, vec4u(0u));
+    var w = Walk(0u, 0u, 0u, vec4u(0u), 1.0);
     let top = PYRAMID_LEVELS - 1u;
     let top_level = table.levels[top];
     // The cut's size if nothing more were split: a split adds three.
@@ -157,6 +175,7 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool, ro
             if action == SPLIT {
                 if planned + 3u > CUT_MAX {
                     w.filled = 1u;
+                    w.share = walked_share(level, place);
                     break;
                 }
                 planned += 3u;
@@ -227,52 +246,40 @@ fn fewest(classes: vec4u) -> u32 {
     return c;
 }
 
-@compute @workgroup_size(8)
-fn main(@builtin(global_invocation_id) id: vec3u) {
+// Where tile `slot` of this band lies, and whether it is in the band at all.
+fn band_tile(slot: u32) -> vec3u {
     let tiles = (params.indirect_size + CUT_TILE - 1u) / CUT_TILE;
-    // This band's tiles, row after row; the cuts buffer holds one band.
-    let slot = id.x;
     let tile = vec2u(slot % tiles.x, band.first_row + slot / tiles.x);
-    if slot >= tiles.x * band.rows || tile.y >= tiles.y {
-        return;
-    }
-    let top = PYRAMID_LEVELS - 1u;
-    let top_level = table.levels[top];
-    let n_top = top_level.y * top_level.z;
-    let stride = cut_stride(n_top);
-    let base = slot * stride;
-    let b = tile_bounds(tile * CUT_TILE);
-    let is_centre = all(tile == params.indirect_size / 2u / CUT_TILE);
-    var w = Walk(0u, 0u, 0u, vec4u(0u));
-    // Slots per class: a quarter of the room, which is twice the cut's most lights.
-    let room = (stride - 2u) / 4u;
-    if b.count > 0u {
-        // A cut that would outgrow CUT_MAX is walked again with a larger split ratio, so a
-        // full tile's lights stay as even in size across it as split_ratio makes them rather
-        // than fine where the walk began and coarse where it ran out; past three times the
-        // ratio (the lights next to the tile are split whatever the ratio), with its finest
-        // level one coarser each time. The top level alone always fits.
-        var floor = params.min_level;
-        var ratio = params.split_ratio;
-        loop {
-            w = walk(b, floor, ratio, base, is_centre, room);
-            if w.filled == 0u || floor >= top {
-                break;
-            }
-            if ratio < 3.0 * params.split_ratio {
-                ratio *= 1.25;
-            } else {
-                floor++;
-            }
-        }
-        atomicAdd(&stats.lights, w.taken + w.away);
-        atomicAdd(&stats.tiles, 1u);
-        if ratio > params.split_ratio {
-            atomicAdd(&stats.full, 1u);
-        }
-    }
-    // The classes padded to one length with lights that carry no flux, so the sum's loop over
-    // every fourth slot meets only its own class.
+    return vec3u(tile, u32(slot < tiles.x * band.rows && tile.y < tiles.y));
+}
+
+// vec4s per tile in this band's cuts.
+fn tile_stride() -> u32 {
+    let top_level = table.levels[PYRAMID_LEVELS - 1u];
+    return cut_stride(top_level.y * top_level.z);
+}
+
+// Slots per class: a quarter of the room, which is twice the cut's most lights.
+fn class_room() -> u32 {
+    return (tile_stride() - 2u) / 4u;
+}
+
+fn is_centre_tile(tile: vec2u) -> bool {
+    return all(tile == params.indirect_size / 2u / CUT_TILE);
+}
+
+// The split ratio a full tile's next walk takes: the one at which the whole cut would fit,
+// were the rest of the tree like the part walked (a cut's size goes about as 1/ratio²), at
+// least 1.25× and at most 2× the last, and never past three times `split_ratio`.
+fn next_ratio(w: Walk, ratio: f32) -> f32 {
+    let projected = f32(w.taken + w.away) / max(w.share, 1e-3);
+    let step = clamp(sqrt(projected / (0.85 * f32(CUT_MAX))), 1.25, 2.0);
+    return min(ratio * step, 3.0 * params.split_ratio);
+}
+
+// Writes the cut's counts and pads its classes to one length with lights that carry no flux,
+// so the sum's loop over every fourth slot meets only its own class.
+fn finish_cut(base: u32, w: Walk, tile: vec2u) {
     let per_class = max(max(w.classes.x, w.classes.y), max(w.classes.z, w.classes.w));
     for (var c = 0u; c < 4u; c++) {
         for (var k = w.classes[c]; k < per_class; k++) {
@@ -280,9 +287,104 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
         }
     }
     cuts[base] = vec4u(4u * per_class, w.away, 0u, 0u);
-    cuts[base + 1u] = vec4u(bitcast<vec3u>(b.sphere.xyz), 0u);
-    if is_centre {
+    if is_centre_tile(tile) {
         stats.vertex_count = 6u;
         stats.instance_count = min(w.taken + w.away, arrayLength(&centre_lights));
     }
+}
+
+fn count_cut(w: Walk) {
+    atomicAdd(&stats.lights, w.taken + w.away);
+    atomicAdd(&stats.tiles, 1u);
+}
+
+// Tiles whose first walk filled the cut, for `retry_full_tiles`: `main` appends them.
+struct RetryList {
+    count: atomic<u32>,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+    // Per full tile: its slot in the band, and the split ratio its next walk takes (f32 bits).
+    tiles: array<vec2u>,
+};
+@group(1) @binding(9) var<storage, read_write> retry: RetryList;
+
+// The arguments of the indirect dispatch of `retry_full_tiles`: a workgroup per CUTS_GROUP
+// full tiles. Only `main` binds it (the retry dispatch reads it as its arguments).
+struct DispatchArgs {
+    x: atomic<u32>,
+    y: u32,
+    z: u32,
+};
+@group(2) @binding(0) var<storage, read_write> retry_dispatch: DispatchArgs;
+
+const CUTS_GROUP: u32 = 8u;
+
+// Each tile's cut, walked once at `split_ratio`. A cut that would outgrow CUT_MAX is left to
+// `retry_full_tiles`, so that the few full tiles are walked again side by side rather than
+// each holding up the seven tiles that share its SIMD row.
+@compute @workgroup_size(CUTS_GROUP)
+fn main(@builtin(global_invocation_id) id: vec3u) {
+    if id.x == 0u {
+        retry_dispatch.y = 1u;
+        retry_dispatch.z = 1u;
+    }
+    let slot = id.x;
+    let place = band_tile(slot);
+    if place.z == 0u {
+        return;
+    }
+    let tile = place.xy;
+    let base = slot * tile_stride();
+    let b = tile_bounds(tile * CUT_TILE);
+    cuts[base + 1u] = vec4u(bitcast<vec3u>(b.sphere.xyz), 0u);
+    var w = Walk(0u, 0u, 0u, vec4u(0u), 1.0);
+    if b.count > 0u {
+        w = walk(b, params.min_level, params.split_ratio, base, is_centre_tile(tile), class_room());
+        // (The top level alone always fits.)
+        if w.filled == 1u && params.min_level < PYRAMID_LEVELS - 1u {
+            let i = atomicAdd(&retry.count, 1u);
+            if i % CUTS_GROUP == 0u {
+                atomicAdd(&retry_dispatch.x, 1u);
+            }
+            retry.tiles[i] = vec2u(slot, bitcast<u32>(next_ratio(w, params.split_ratio)));
+            return;
+        }
+        count_cut(w);
+    }
+    finish_cut(base, w, tile);
+}
+
+// The full tiles' cuts, walked again with a larger split ratio, so a full tile's lights stay
+// as even in size across it as the ratio makes them rather than fine where the walk began and
+// coarse where it ran out; past three times `split_ratio` (the lights next to the tile are
+// split whatever the ratio), with its finest level one coarser each time.
+@compute @workgroup_size(CUTS_GROUP)
+fn retry_full_tiles(@builtin(global_invocation_id) id: vec3u) {
+    if id.x >= atomicLoad(&retry.count) {
+        return;
+    }
+    let entry = retry.tiles[id.x];
+    let slot = entry.x;
+    let tile = band_tile(slot).xy;
+    let base = slot * tile_stride();
+    let b = tile_bounds(tile * CUT_TILE);
+    let top = PYRAMID_LEVELS - 1u;
+    var floor = params.min_level;
+    var ratio = bitcast<f32>(entry.y);
+    var w: Walk;
+    loop {
+        w = walk(b, floor, ratio, base, is_centre_tile(tile), class_room());
+        if w.filled == 0u || floor >= top {
+            break;
+        }
+        if ratio < 3.0 * params.split_ratio {
+            ratio = next_ratio(w, ratio);
+        } else {
+            floor++;
+        }
+    }
+    count_cut(w);
+    atomicAdd(&stats.full, 1u);
+    finish_cut(base, w, tile);
 }
