@@ -126,6 +126,11 @@ pub struct BenchArgs {
     /// DIR/indirect_NNN.exr and DIR/reference_NNN.exr (the folder is created).
     #[arg(long, value_name = "DIR", requires = "pan")]
     pub out_dir: Option<PathBuf>,
+    /// With --pan: also compare against the reference lit by K² times as many senders (K odd,
+    /// 3 to 7; its cost is K² times the reference's): the same receivers, whose own reference
+    /// at the frame's size then shows how far its sampling moves it from frame to frame.
+    #[arg(long, value_name = "K", value_parser = parse_reference_senders, requires = "pan")]
+    pub reference_senders: Option<u32>,
 }
 
 impl BenchArgs {
@@ -278,6 +283,13 @@ pub fn parse_pan_deg(s: &str) -> Result<f32, String> {
     }
 }
 
+pub fn parse_reference_senders(s: &str) -> Result<u32, String> {
+    match s.trim().parse::<u32>() {
+        Ok(k) if (3..=7).contains(&k) && k % 2 == 1 => Ok(k),
+        _ => Err(format!("'{s}': the senders' factor must be 3, 5 or 7 (odd, so a block's centre pixel is a pixel)")),
+    }
+}
+
 pub fn parse_fov(s: &str) -> Result<f32, String> {
     match s.trim().parse::<f32>() {
         Ok(v) if v > 0.5 && v < 179.5 => Ok(v),
@@ -311,5 +323,13 @@ mod tests {
         assert_eq!(parse_fov("60"), Ok(60.0));
         assert!(parse_fov("0").is_err());
         assert!(parse_fov("180").is_err());
+    }
+
+    #[test]
+    fn reference_senders_are_odd_factors_from_3_to_7() {
+        assert_eq!((parse_reference_senders("3"), parse_reference_senders("7")), (Ok(3), Ok(7)));
+        for bad in ["1", "2", "4", "9", "-3", "x"] {
+            assert!(parse_reference_senders(bad).unwrap_err().contains("3, 5 or 7"), "{bad}");
+        }
     }
 }

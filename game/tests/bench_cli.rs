@@ -76,17 +76,56 @@ fn bench_with_a_target_frame_rate_reports_the_scales_dynamic_resolution_chose() 
 }
 
 #[test]
+fn bench_pan_compares_against_the_reference_with_finer_senders_too() {
+    let dir = scratch("pan_finer");
+    let json = dir.join("out.json");
+    let level = cellar();
+    let out = headlamp(&[
+        "bench",
+        "--level",
+        level.as_str(),
+        "--pan",
+        "--size",
+        "32x24",
+        "--frames",
+        "3",
+        "--reference-senders",
+        "3",
+        "--out-dir",
+        dir.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "bench --pan failed: {}\n{stdout}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("against the reference with 3x3 as many senders"), "{stdout}");
+    assert!(stdout.contains("the 32x24 reference's own flicker against it"), "{stdout}");
+    let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let finer = &report["finer"];
+    assert_eq!(finer["senders"], 3);
+    for key in ["flicker", "reference_flicker"] {
+        let v = finer[key].as_f64().unwrap_or_else(|| panic!("finer.{key} is not a number: {finer}"));
+        assert!(v.is_finite() && v >= 0.0, "finer.{key} = {v}");
+    }
+    assert_eq!(finer["error_per_frame"].as_array().map(Vec::len), Some(3));
+    // The finer reference's frames are written at the pan's size, beside the others.
+    let frame = image::open(dir.join("reference_finer_002.exr")).expect("the finer reference's last frame");
+    assert_eq!((frame.width(), frame.height()), (32, 24));
+}
+
+#[test]
 fn bench_rejects_bad_input_with_one_line() {
     let dir = scratch("bad");
     let missing = dir.join("nope.gltf");
     let bad_json = dir.join("no_such_dir").join("out.json");
     let cellar = cellar();
-    let cases: [(Vec<&str>, &str); 5] = [
+    let cases: [(Vec<&str>, &str); 6] = [
         (vec!["bench", "--level", missing.to_str().unwrap()], "nope.gltf"),
         (vec!["bench", "--level", &cellar, "--frames", "0"], "--frames"),
         (vec!["bench", "--level", &cellar, "--set", "gi.split_ratio=9"], "split_ratio"),
         (vec!["bench", "--level", &cellar, "--json", bad_json.to_str().unwrap()], "--json"),
         (vec!["bench", "--level", &cellar, "--target-fps", "5"], "--target-fps"),
+        (vec!["bench", "--level", &cellar, "--pan", "--reference-senders", "4"], "--reference-senders"),
     ];
     for (args, needle) in cases {
         let out = headlamp(&args);

@@ -26,6 +26,8 @@ pub struct GiHandle(pub(crate) Rc<RefCell<Shared>>);
 pub(crate) struct Shared {
     pub settings: GiSettings,
     pub stats: GiStats,
+    /// See [`GiHandle::set_reference_stride`]; 0 stands for 1.
+    pub reference_stride: u32,
 }
 
 impl GiHandle {
@@ -37,6 +39,20 @@ impl GiHandle {
     }
     pub fn stats(&self) -> GiStats {
         self.0.borrow().stats
+    }
+
+    /// For tools that check the `reference` view against finer senders: it then evaluates only
+    /// the centre pixel of each `stride`×`stride` block of the view (whose size should be a
+    /// multiple of it) and writes the rest of the block black. Rendered at k times a size with
+    /// stride k (k odd), those pixels look along the rays of that size's pixels, so they are
+    /// its receivers lit by k² as many senders, at k² its cost rather than k⁴. 1 (the
+    /// default) evaluates every pixel.
+    pub fn set_reference_stride(&self, stride: u32) {
+        self.0.borrow_mut().reference_stride = stride.max(1);
+    }
+
+    pub fn reference_stride(&self) -> u32 {
+        self.0.borrow().reference_stride.max(1)
     }
 }
 

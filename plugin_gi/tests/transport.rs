@@ -424,6 +424,40 @@ fn a_lamp_facing_the_void_lights_nothing_indirectly() {
 /// finest is taken as the truth: the 3× picture must lie much closer to it than the 1× one.
 /// Receivers at a silhouette or a fold are left out (rasterised at three sizes, a ray that
 /// grazes an edge may land on either side of it).
+/// `bench --pan --reference-senders 3` renders the reference at 3× the size and evaluates only
+/// the centre pixel of each 3×3 block: those must be exactly the pixels the whole reference has
+/// there (same receiver, same senders, same sum), and the rest of each block black.
+#[test]
+fn a_strided_reference_evaluates_the_block_centres_exactly() {
+    let gpu = gpu();
+    let size = (72u32, 54u32);
+    let view = cornell_view(4.0);
+    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let whole = render_linear(&gpu, &mut r, &view, "reference", size);
+    r.handle.set_reference_stride(3);
+    let strided = render_linear(&gpu, &mut r, &view, "reference", size);
+    let (mut centres, mut lit) = (0, 0);
+    for (x, y, p) in strided.enumerate_pixels() {
+        if x % 3 == 1 && y % 3 == 1 {
+            let q = whole.get_pixel(x, y);
+            for c in 0..3 {
+                assert!(
+                    (p[c] - q[c]).abs() <= 1e-6 * q[c].abs().max(1e-6),
+                    "({x}, {y}) channel {c}: {} vs {}",
+                    p[c],
+                    q[c]
+                );
+            }
+            centres += 1;
+            lit += usize::from(q[0] + q[1] + q[2] > 0.0);
+        } else {
+            assert_eq!(&p.0[..3], &[0.0; 3], "({x}, {y}) is not a block's centre and must stay black");
+        }
+    }
+    assert_eq!(centres, 24 * 18);
+    assert!(lit * 2 > centres, "the box must be lit: {lit} of {centres} centres");
+}
+
 #[test]
 fn the_reference_converges_as_the_lamp_view_gets_finer() {
     let gpu = gpu();

@@ -27,12 +27,15 @@
 @group(1) @binding(5) var gbuffer_normal: texture_2d<f32>;
 @group(1) @binding(6) var gbuffer_position: texture_2d<f32>;
 @group(1) @binding(7) var reference_out: texture_storage_2d<rgba32float, write>;
-// This dispatch's senders: [first, first + count); `last` = 1 on the final range.
+// This dispatch's senders: [first, first + count); `last` = 1 on the final range. The
+// receivers are the centre pixels of the view's `stride`×`stride` blocks (1: every pixel); the
+// rest of each block is written black, so a view rendered at k times a size with stride k
+// holds that size's receivers lit by k² as many senders.
 struct SenderRange {
     first: u32,
     count: u32,
     last: u32,
-    pad: u32,
+    stride: u32,
 };
 @group(1) @binding(8) var<uniform> range: SenderRange;
 // Irradiance summed so far, per receiver pixel.
@@ -140,8 +143,11 @@ fn near_field_correction(near: vec2u, x: vec3f, n: vec3f) -> vec3f {
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
     let size = textureDimensions(gbuffer_normal);
-    let pixel = vec2u(id.x % size.x, id.x / size.x);
-    let in_view = id.x < size.x * size.y;
+    let stride = range.stride;
+    let blocks = size / stride;
+    let block = vec2u(id.x % blocks.x, id.x / blocks.x);
+    let pixel = block * stride + stride / 2u;
+    let in_view = id.x < blocks.x * blocks.y;
     var normal = vec4f(0.0);
     var x = vec3f(0.0);
     if in_view {
@@ -193,6 +199,10 @@ fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_inde
     }
     if in_view {
         if range.last == 1u {
+            for (var k = 0u; k < stride * stride; k++) {
+                let other = block * stride + vec2u(k % stride, k / stride);
+                textureStore(reference_out, vec2i(other), vec4f(0.0, 0.0, 0.0, 1.0));
+            }
             let rho = textureLoad(gbuffer_albedo, vec2i(pixel), 0).rgb;
             textureStore(reference_out, vec2i(pixel), vec4f(rho / PI * e, 1.0));
         } else {

@@ -43,6 +43,22 @@ pub struct PanReport {
     pub indirect_change: f64,
     /// Per frame: relative L2 error of 8×8-block means against the reference (as `bench`).
     pub error_per_frame: Vec<f64>,
+    /// With `--reference-senders K`: the same figures against the reference lit by K² as many
+    /// senders.
+    pub finer: Option<FinerReport>,
+}
+
+/// The pan against a reference of the same receivers lit by `senders`² as many senders.
+#[derive(Serialize, Debug)]
+pub struct FinerReport {
+    pub senders: u32,
+    /// The GI's flicker against it.
+    pub flicker: f64,
+    /// The frame-size reference's own flicker against it: how far that reference's sampling
+    /// moves it from frame to frame.
+    pub reference_flicker: f64,
+    /// Per frame: the GI's error against it (8×8 blocks).
+    pub error_per_frame: Vec<f64>,
 }
 
 pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) -> anyhow::Result<PanReport> {
@@ -63,6 +79,8 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
     let (w, h) = args.size();
     let n = args.frames() as usize;
     let target = HeadlessTarget::new(gpu, w, h, ImageKind::Linear);
+    let mut finer = args.reference_senders.map(|k| FinerReference::new(gpu, level, &handle, k, (w, h))).transpose()?;
+    let (mut finer_refs, mut finer_errors) = (Vec::new(), Vec::new());
     let (mut tests, mut references, mut errors) = (Vec::new(), Vec::new(), Vec::new());
     for t in 0..n {
         let mut view = start.clone();
@@ -75,10 +93,24 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
             save(&indirect, &dir.join(format!("indirect_{t:03}.exr")))?;
             save(&exact, &dir.join(format!("reference_{t:03}.exr")))?;
         }
+        if let Some(finer) = &mut finer {
+            let fine = finer.render(gpu, &view)?;
+            if let Some(dir) = &args.out_dir {
+                save(&fine, &dir.join(format!("reference_finer_{t:03}.exr")))?;
+            }
+            finer_errors.push(metrics::block_error(&indirect, &fine));
+            finer_refs.push(metrics::block_means(&fine, FLICKER_BLOCK));
+        }
         errors.push(metrics::block_error(&indirect, &exact));
         tests.push(metrics::block_means(&indirect, FLICKER_BLOCK));
         references.push(metrics::block_means(&exact, FLICKER_BLOCK));
     }
+    let finer = finer.map(|f| FinerReport {
+        senders: f.senders,
+        flicker: metrics::flicker(&tests, &finer_refs),
+        reference_flicker: metrics::flicker(&references, &finer_refs),
+        error_per_frame: finer_errors,
+    });
     Ok(PanReport {
         level: args.level.display().to_string(),
         size: [w, h],
@@ -93,7 +125,43 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
         reference_change: metrics::change(&references),
         indirect_change: metrics::change(&tests),
         error_per_frame: errors,
+        finer,
     })
+}
+
+/// The reference of a frame's receivers lit by k² as many senders: rendered at k times the
+/// frame's size, evaluating only the centre pixel of each k×k block (`set_reference_stride`),
+/// which looks along the ray of the frame's pixel.
+struct FinerReference {
+    senders: u32,
+    renderer: Renderer,
+    target: HeadlessTarget,
+}
+
+impl FinerReference {
+    fn new(gpu: &Gpu, level: &Level, handle: &plugin_gi::GiHandle, k: u32, (w, h): (u32, u32)) -> anyhow::Result<Self> {
+        let limit = gpu.device.limits().max_texture_dimension_2d;
+        if w.saturating_mul(k) > limit || h.saturating_mul(k) > limit {
+            return Err(anyhow!(
+                "--reference-senders {k}: the finer reference of a {w}x{h} pan is {}x{} pixels, more than this \
+                 device's {limit}",
+                w * k,
+                h * k
+            ));
+        }
+        let (plugins, finer) = crate::plugins(handle.settings());
+        finer.set_reference_stride(k);
+        let mut renderer = Renderer::new(gpu, &level.scene, plugins)?;
+        renderer.set_view("reference").map_err(|e| anyhow!(e))?;
+        Ok(Self { senders: k, renderer, target: HeadlessTarget::new(gpu, w * k, h * k, ImageKind::Linear) })
+    }
+
+    fn render(&mut self, gpu: &Gpu, view: &ViewState) -> anyhow::Result<image::Rgba32FImage> {
+        let full = linear(self.target.render(gpu, &mut self.renderer, view)?)?;
+        let k = self.senders;
+        let (w, h) = (full.width() / k, full.height() / k);
+        Ok(image::Rgba32FImage::from_fn(w, h, |x, y| *full.get_pixel(x * k + k / 2, y * k + k / 2)))
+    }
 }
 
 fn linear(image: RenderedImage) -> anyhow::Result<image::Rgba32FImage> {
@@ -138,5 +206,21 @@ pub fn table(r: &PanReport) -> String {
         100.0 * median,
         100.0 * worst
     );
+    if let Some(f) = &r.finer {
+        let k = f.senders;
+        let mut sorted = f.error_per_frame.clone();
+        sorted.sort_by(f64::total_cmp);
+        let median = sorted.get(sorted.len() / 2).copied().unwrap_or(f64::NAN);
+        let _ =
+            writeln!(s, "| against the reference with {k}x{k} as many senders: flicker | {:.2} % |", 100.0 * f.flicker);
+        let _ = writeln!(
+            s,
+            "| the {}x{} reference's own flicker against it | {:.2} % |",
+            r.size[0],
+            r.size[1],
+            100.0 * f.reference_flicker
+        );
+        let _ = writeln!(s, "| error vs it (8x8 blocks), median frame | {:.2} % |", 100.0 * median);
+    }
     s
 }

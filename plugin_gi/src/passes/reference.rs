@@ -71,6 +71,9 @@ impl RenderPass for ReferencePass {
         self.gpu.write_params(&ctx.gpu.queue, &super::flux::params(&self.handle.settings(), ctx, 0));
         let lamp = lamp_view(ctx.frame.view.headlamp.attached);
         let (w, h) = ctx.frame.size;
+        // (A view smaller than the stride is evaluated at its first pixel.)
+        let stride = self.handle.reference_stride().min(w.min(h)).max(1);
+        let receivers = (w / stride) * (h / stride);
         let (fw, fh) = lamp.size.resolve(ctx.frame.size);
         let senders = fw * fh;
         let chunks = senders.div_ceil(SENDERS_PER_DISPATCH).max(1);
@@ -88,7 +91,7 @@ impl RenderPass for ReferencePass {
         }
         let sums = &self.sums.as_ref().expect("made above").1;
         for chunk in 0..chunks {
-            let range = [chunk * SENDERS_PER_DISPATCH, SENDERS_PER_DISPATCH, u32::from(chunk + 1 == chunks), 0];
+            let range = [chunk * SENDERS_PER_DISPATCH, SENDERS_PER_DISPATCH, u32::from(chunk + 1 == chunks), stride];
             let uniform = &self.ranges[chunk as usize];
             ctx.gpu.queue.write_buffer(uniform, 0, bytemuck::cast_slice(&range));
             let group = bind(
@@ -114,7 +117,7 @@ impl RenderPass for ReferencePass {
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, ctx.frame.globals, &[]);
             pass.set_bind_group(1, &group, &[]);
-            pass.dispatch_workgroups((w * h).div_ceil(64), 1, 1);
+            pass.dispatch_workgroups(receivers.div_ceil(64), 1, 1);
         }
     }
 }
