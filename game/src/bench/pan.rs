@@ -196,10 +196,7 @@ pub fn table(r: &PanReport) -> String {
     let _ = writeln!(s, "| flicker: mean ‖e(t+1) − e(t)‖ / mean ‖ref‖ | {:.2} % |", 100.0 * r.flicker);
     let _ = writeln!(s, "| the reference's own change per frame | {:.2} % |", 100.0 * r.reference_change);
     let _ = writeln!(s, "| the GI's change per frame | {:.2} % |", 100.0 * r.indirect_change);
-    let mut sorted = r.error_per_frame.clone();
-    sorted.sort_by(f64::total_cmp);
-    let median = sorted.get(sorted.len() / 2).copied().unwrap_or(f64::NAN);
-    let worst = sorted.last().copied().unwrap_or(f64::NAN);
+    let (median, worst) = median_and_worst(&r.error_per_frame);
     let _ = writeln!(
         s,
         "| error vs reference (8x8 blocks), median / worst frame | {:.2} % / {:.2} % |",
@@ -208,9 +205,7 @@ pub fn table(r: &PanReport) -> String {
     );
     if let Some(f) = &r.finer {
         let k = f.senders;
-        let mut sorted = f.error_per_frame.clone();
-        sorted.sort_by(f64::total_cmp);
-        let median = sorted.get(sorted.len() / 2).copied().unwrap_or(f64::NAN);
+        let (median, _) = median_and_worst(&f.error_per_frame);
         let _ =
             writeln!(s, "| against the reference with {k}x{k} as many senders: flicker | {:.2} % |", 100.0 * f.flicker);
         let _ = writeln!(
@@ -223,4 +218,13 @@ pub fn table(r: &PanReport) -> String {
         let _ = writeln!(s, "| error vs it (8x8 blocks), median frame | {:.2} % |", 100.0 * median);
     }
     s
+}
+
+/// The median (the upper one of an even count) and the largest of per-frame figures; NaN when
+/// there are none.
+fn median_and_worst(figures: &[f64]) -> (f64, f64) {
+    let mut sorted = figures.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let median = sorted.get(sorted.len() / 2).copied().unwrap_or(f64::NAN);
+    (median, sorted.last().copied().unwrap_or(f64::NAN))
 }
