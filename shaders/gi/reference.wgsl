@@ -201,7 +201,9 @@ fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_inde
         if range.last == 1u {
             for (var k = 0u; k < stride * stride; k++) {
                 let other = block * stride + vec2u(k % stride, k / stride);
-                textureStore(reference_out, vec2i(other), vec4f(0.0, 0.0, 0.0, 1.0));
+                if any(other != pixel) {
+                    textureStore(reference_out, vec2i(other), vec4f(0.0, 0.0, 0.0, 1.0));
+                }
             }
             let rho = textureLoad(gbuffer_albedo, vec2i(pixel), 0).rgb;
             textureStore(reference_out, vec2i(pixel), vec4f(rho / PI * e, 1.0));
