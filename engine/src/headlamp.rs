@@ -90,5 +90,12 @@ pub fn distribution_texels(dist: &IntensityDistribution, fov_y: f32, aspect: f32
             let texels = img.values.iter().map(|c| [c[0], c[1], c[2], 1.0]).collect();
             (img.width, img.height, texels)
         }
+        // As fine across as down: a wide frustum gets a wider texture.
+        IntensityDistribution::Photometric(ies) => {
+            let height = scene::ies_texture_size(fov_y);
+            let width = ((height as f32 * aspect).round() as u32).clamp(3, 2 * height) | 1;
+            let img = ies.distribution(fov_y, aspect, width, height);
+            (width, height, img.values.iter().map(|c| [c[0], c[1], c[2], 1.0]).collect())
+        }
     }
 }

@@ -18,6 +18,7 @@ use crate::error::{one_line, LoadError, LoadErrorKind};
 use crate::geometry::{bake, rigid_pose, RawTriangles};
 use crate::gltf_accessor::{read_indices, read_vectors, view_bytes};
 use crate::gltf_container::{is_glb, parse_uri, split_glb, UriTarget};
+use crate::gltf_unsupported::unsupported_features;
 use crate::image_loader::{decode_texture, file_label};
 use crate::limits::{MAX_FILE_BYTES, MAX_TRIANGLES};
 use crate::sources::Sources;
@@ -48,6 +49,9 @@ pub(crate) fn load_gltf_with(path: &Path, sources: &mut Sources) -> Result<Scene
         .map_err(|_| LoadError::gltf(path, "the glTF validator gave up on this file"))?
         .map_err(|e| LoadError::gltf(path, describe_invalid(&e)))?;
 
+    for feature in unsupported_features(&doc) {
+        sources.warn(path, None, feature);
+    }
     let buffers = load_buffers(&doc, blob, path, sources)?;
     let mut builder = Builder {
         path,
@@ -256,11 +260,15 @@ impl Builder<'_> {
         };
         let mode = prim.mode();
         if !matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
-            log::warn!("{}: {label}: skipping {mode:?} primitive (only triangles are drawn)", self.path.display());
+            self.sources.warn(
+                self.path,
+                None,
+                format!("{label}: skipping {mode:?} primitive (only triangles are drawn)"),
+            );
             return Ok(());
         }
         let Some(pos_acc) = prim.get(&Semantic::Positions) else {
-            log::warn!("{}: {label}: skipping primitive without POSITION", self.path.display());
+            self.sources.warn(self.path, None, format!("{label}: skipping primitive without POSITION"));
             return Ok(());
         };
         let with_label = |k: LoadErrorKind| match k {
@@ -298,10 +306,8 @@ impl Builder<'_> {
         let indices = match to_triangle_list(mode, indices) {
             (list, 0) => list,
             (list, dropped) => {
-                log::warn!(
-                    "{}: {label}: ignoring {dropped} trailing indices that do not form a triangle",
-                    self.path.display()
-                );
+                let message = format!("{label}: ignoring {dropped} trailing indices that do not form a triangle");
+                self.sources.warn(self.path, None, message);
                 list
             }
         };
@@ -340,11 +346,11 @@ impl Builder<'_> {
                 let base_color_texture = match pbr.base_color_texture() {
                     Some(info) => {
                         if info.tex_coord() != 0 {
-                            log::warn!(
-                                "{}: material {idx}: base colour texture uses TEXCOORD_{}; TEXCOORD_0 is used instead",
-                                self.path.display(),
+                            let message = format!(
+                                "material {idx}: base colour texture uses TEXCOORD_{}; TEXCOORD_0 is used instead",
                                 info.tex_coord()
                             );
+                            self.sources.warn(self.path, None, message);
                         }
                         Some(self.texture(info.texture().source())?)
                     }

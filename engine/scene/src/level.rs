@@ -16,6 +16,7 @@
 //! power = 1.0                     # P in I(w) = P * T(uv(w)), W/sr, >= 0
 //! fov_deg = 60.0                  # vertical FOV of the lamp frustum, in (1, 179)
 //! profile = "uniform"             # "uniform" | "spot" | path to a PNG/EXR intensity texture
+//!                                 # | path to an IESNA LM-63 file (.ies, any case; see ies.rs)
 //! inner_deg = 20.0                # spot: full intensity inside this half-angle
 //! outer_deg = 30.0                # spot: zero beyond this half-angle (> inner, <= 90)
 //! color = [1.0, 1.0, 1.0]         # linear tint multiplying T
@@ -41,8 +42,9 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 
-use crate::error::{LoadError, LoadErrorKind};
+use crate::error::{LoadError, LoadErrorKind, LoadWarning};
 use crate::gltf_loader::load_gltf_with;
+use crate::ies::IesProfile;
 use crate::level_toml::parse_level_toml;
 use crate::obj_loader::load_obj_with;
 use crate::sources::Sources;
@@ -70,6 +72,9 @@ pub struct Level {
     /// textures, .mtl, headlamp profile), each as its length (u64 LE) then its bytes, in load
     /// order. Replays use it to notice that a level changed.
     pub content_hash: u64,
+    /// What the load accepted but the author should hear about (ignored keys and glTF
+    /// features, a missing .mtl), in load order; already logged.
+    pub warnings: Vec<LoadWarning>,
 }
 
 /// Where the player starts.
@@ -124,6 +129,10 @@ pub enum IntensityDistribution {
     Spot { inner: f32, outer: f32 },
     /// T sampled from a texture spanning the frustum.
     Image(DistributionImage),
+    /// T from a photometric candela table (an IES file), candela / its largest value in each
+    /// direction: baked for whatever frustum the lamp has (the camera's while worn, `fov_deg`
+    /// square when put down), so the angles stay right at any field of view and aspect.
+    Photometric(IesProfile),
 }
 
 /// A linear intensity texture, row-major from the top-left. PNG values are v/255 (no sRGB
@@ -157,6 +166,7 @@ pub fn load_level(path: &Path) -> Result<Level, LoadError> {
         headlamp: HeadlampProfile::default(),
         game: toml::Table::new(),
         content_hash: sources.hash(),
+        warnings: sources.take_warnings(),
     })
 }
 
@@ -180,7 +190,10 @@ fn load_level_folder(dir: &Path) -> Result<Level, LoadError> {
     let mut sources = Sources::new(Some(root));
     let bytes = sources.read(&toml_path)?;
     // Cheap checks first: a typo in level.toml fails before a large scene is loaded.
-    let parsed = parse_level_toml(&bytes, &toml_path)?;
+    let mut parsed = parse_level_toml(&bytes, &toml_path)?;
+    for (at, message) in std::mem::take(&mut parsed.warnings) {
+        sources.warn(&toml_path, at, message);
+    }
     let scene_path = sources.resolve(&toml_path, dir, &parsed.scene)?;
     let mut scene = load_scene_with(&scene_path, &mut sources)?;
     let headlamp = parsed.headlamp(&toml_path, dir, &mut sources)?;
@@ -195,5 +208,6 @@ fn load_level_folder(dir: &Path) -> Result<Level, LoadError> {
         headlamp,
         game: parsed.game,
         content_hash: sources.hash(),
+        warnings: sources.take_warnings(),
     })
 }

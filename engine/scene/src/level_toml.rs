@@ -1,19 +1,22 @@
 //! `level.toml`: the serde schema and its checks (the contract is documented in `level.rs`).
 //!
 //! Parsing happens in two steps so errors are precise: first as plain TOML (a syntax error
-//! says "invalid TOML at line N"), then into the schema with `deny_unknown_fields` (a typo
-//! says "invalid level at line N: unknown field `powr`, expected one of ..."). Value checks
-//! that serde cannot express name the offending key, e.g. `headlamp.outer_deg`.
+//! says "level.toml:3:9: invalid TOML: ..."), then into the schema with `deny_unknown_fields`
+//! (a typo says "level.toml:4:1: invalid level: unknown field `powr`, expected one of ...").
+//! Value checks that serde cannot express name the offending key, e.g. `headlamp.outer_deg`,
+//! and are placed where that key is written.
 
 use std::path::Path;
 
 use glam::Vec3;
 use serde::Deserialize;
 
-use crate::error::{one_line, LoadError, LoadErrorKind};
+use crate::error::{one_line, LoadError, LoadErrorKind, TextPos};
+use crate::ies::{ies_texture_size, read_ies};
 use crate::image_loader::decode_image;
 use crate::level::{DistributionImage, HeadlampProfile, IntensityDistribution, Spawn};
 use crate::sources::Sources;
+use crate::toml_place::{key_place, leading_key};
 use crate::{LightKind, PunctualLight};
 
 #[derive(Deserialize)]
@@ -84,22 +87,30 @@ pub(crate) struct ParsedLevel {
     pub lights: Vec<PunctualLight>,
     pub game: toml::Table,
     headlamp: HeadlampToml,
+    /// Keys that are legal but do nothing, placed in the file, for [`Sources::warn`].
+    pub warnings: Vec<(Option<TextPos>, String)>,
 }
 
 pub(crate) fn parse_level_toml(bytes: &[u8], path: &Path) -> Result<ParsedLevel, LoadError> {
     let text = std::str::from_utf8(bytes).map_err(|e| {
-        let line = line_of(&bytes[..e.valid_up_to()]);
-        LoadError::new(path, LoadErrorKind::TomlSyntax { line, message: "not valid UTF-8".into() })
+        let valid = std::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or("");
+        LoadError::new(path, LoadErrorKind::TomlSyntax("not valid UTF-8".into()))
+            .at(Some(TextPos::of_offset(valid, valid.len())))
     })?;
     if let Err(e) = text.parse::<toml::Table>() {
-        let (line, message) = locate(text, &e);
-        return Err(LoadError::new(path, LoadErrorKind::TomlSyntax { line: line.unwrap_or(1), message }));
+        let (at, message) = locate(text, &e);
+        return Err(
+            LoadError::new(path, LoadErrorKind::TomlSyntax(message)).at(at.or(Some(TextPos::of_offset(text, 0))))
+        );
     }
     let raw: LevelToml = toml::from_str(text).map_err(|e| {
-        let (line, message) = locate(text, &e);
-        LoadError::new(path, LoadErrorKind::LevelSchema { line, message })
+        let (at, message) = locate(text, &e);
+        LoadError::new(path, LoadErrorKind::LevelSchema(message)).at(at)
     })?;
-    let bad = |msg: String| LoadError::level(path, msg);
+    let bad = |msg: String| {
+        let at = key_place(text, leading_key(&msg));
+        LoadError::level(path, msg).at(at)
+    };
 
     if raw.name.trim().is_empty() {
         return Err(bad("name must not be empty".into()));
@@ -124,7 +135,21 @@ pub(crate) fn parse_level_toml(bytes: &[u8], path: &Path) -> Result<ParsedLevel,
             })
         }
     };
-    let lights = raw.lights.iter().enumerate().map(|(i, l)| light(i, l).map_err(bad)).collect::<Result<Vec<_>, _>>()?;
+    let mut ignored = Vec::new();
+    let lights = raw
+        .lights
+        .iter()
+        .enumerate()
+        .map(|(i, l)| light(i, l, &mut ignored).map_err(bad))
+        .collect::<Result<Vec<_>, _>>()?;
+    if raw.headlamp.profile.as_deref() != Some("spot") {
+        for (key, value) in [("inner_deg", raw.headlamp.inner_deg), ("outer_deg", raw.headlamp.outer_deg)] {
+            if value.is_some() {
+                ignored.push(format!("headlamp.{key} is ignored: it only applies to profile = \"spot\""));
+            }
+        }
+    }
+    let warnings = ignored.into_iter().map(|msg| (key_place(text, leading_key(&msg)), msg)).collect();
     check_headlamp_values(&raw.headlamp).map_err(bad)?;
     Ok(ParsedLevel {
         name: raw.name,
@@ -134,40 +159,54 @@ pub(crate) fn parse_level_toml(bytes: &[u8], path: &Path) -> Result<ParsedLevel,
         lights,
         game: raw.game,
         headlamp: raw.headlamp,
+        warnings,
     })
 }
 
 impl ParsedLevel {
-    /// Builds the headlamp, reading the profile image (inside the level folder) if one is named.
+    /// Builds the headlamp, reading the profile image or .ies file (inside the level folder) if
+    /// one is named.
     pub fn headlamp(&self, toml_path: &Path, dir: &Path, sources: &mut Sources) -> Result<HeadlampProfile, LoadError> {
         let h = &self.headlamp;
         let defaults = HeadlampProfile::default();
         let profile = h.profile.as_deref().unwrap_or("uniform");
+        let fov_y = h.fov_deg.map_or(defaults.fov_y, f32::to_radians);
         let distribution = match profile {
             "uniform" => IntensityDistribution::Uniform,
             "spot" => IntensityDistribution::Spot {
                 inner: h.inner_deg.unwrap_or(20.0).to_radians(),
                 outer: h.outer_deg.unwrap_or(30.0).to_radians(),
             },
+            file if is_ies(file) => {
+                let ies_path = sources.resolve(toml_path, dir, file)?;
+                let ies = read_ies(&ies_path, sources)?;
+                // Checked over the put-down lamp's frustum (fov_deg, square); the renderer
+                // bakes it for each frustum the lamp has.
+                let size = ies_texture_size(fov_y);
+                if ies.distribution(fov_y, 1.0, size, size).values.iter().all(|v| v[0] == 0.0) {
+                    let fov = fov_y.to_degrees();
+                    sources.warn(&ies_path, None, format!("no light inside the lamp frustum (fov_deg = {fov})"));
+                }
+                IntensityDistribution::Photometric(ies)
+            }
             file => {
                 let image_path = sources.resolve(toml_path, dir, file)?;
                 let bytes = sources.read(&image_path)?;
                 IntensityDistribution::Image(distribution_image(&bytes, &image_path)?)
             }
         };
-        if profile != "spot" && (h.inner_deg.is_some() || h.outer_deg.is_some()) {
-            log::warn!(
-                "{}: headlamp.inner_deg/outer_deg only apply to profile = \"spot\"; ignored",
-                toml_path.display()
-            );
-        }
         Ok(HeadlampProfile {
             power: h.power.unwrap_or(defaults.power),
-            fov_y: h.fov_deg.map_or(defaults.fov_y, f32::to_radians),
+            fov_y,
             color: h.color.unwrap_or(defaults.color),
             distribution,
         })
     }
+}
+
+/// An IESNA LM-63 photometric file, by its extension (any case).
+fn is_ies(file: &str) -> bool {
+    Path::new(file).extension().is_some_and(|e| e.eq_ignore_ascii_case("ies"))
 }
 
 fn check_headlamp_values(h: &HeadlampToml) -> Result<(), String> {
@@ -186,7 +225,9 @@ fn check_headlamp_values(h: &HeadlampToml) -> Result<(), String> {
     Ok(())
 }
 
-fn light(i: usize, l: &LightToml) -> Result<PunctualLight, String> {
+/// A `[[lights]]` entry; keys it ignores are added to `ignored`, each message starting with
+/// its key.
+fn light(i: usize, l: &LightToml, ignored: &mut Vec<String>) -> Result<PunctualLight, String> {
     let at = format!("lights[{i}]");
     let kind_name = format!("{:?}", l.kind).to_lowercase();
     let color = l.color.unwrap_or([1.0; 3]);
@@ -209,7 +250,7 @@ fn light(i: usize, l: &LightToml) -> Result<PunctualLight, String> {
     let direction = match (l.kind, l.direction) {
         (LightKindToml::Point, d) => {
             if d.is_some() {
-                log::warn!("{at}.direction is ignored for a point light");
+                ignored.push(format!("{at}.direction is ignored: a point light shines every way"));
             }
             Vec3::NEG_Z
         }
@@ -285,28 +326,22 @@ fn distribution_image(bytes: &[u8], path: &Path) -> Result<DistributionImage, Lo
     Ok(DistributionImage { width, height, values })
 }
 
-/// The 1-based line of a TOML error and its message, quoting the offending line when the
-/// error is about one line (toml's messages do not always say which key was wrong). A missing
-/// top-level key has no line: the error spans the whole document.
-fn locate(text: &str, e: &toml::de::Error) -> (Option<usize>, String) {
+/// Where a TOML error is and its message, quoting the offending line when the error is about
+/// one line (toml's messages do not always say which key was wrong). A missing top-level key
+/// has no place: the error spans the whole document.
+fn locate(text: &str, e: &toml::de::Error) -> (Option<TextPos>, String) {
     let message = one_line(e.message());
     let Some(span) = e.span() else { return (None, message) };
     let start = span.start.min(text.len());
     let spanned = text.get(start..span.end.min(text.len())).unwrap_or("");
+    let at = TextPos::of_offset(text, start);
     if message.starts_with("missing field") {
-        let line = (start > 0).then(|| line_of(&text.as_bytes()[..start]));
-        return (line, message);
+        return ((start > 0).then_some(at), message);
     }
-    let line = line_of(&text.as_bytes()[..start]);
-    let source_line = text.lines().nth(line - 1).unwrap_or("").trim();
+    let source_line = text.lines().nth(at.line - 1).unwrap_or("").trim();
     if !spanned.trim_end().contains('\n') && !source_line.is_empty() && source_line.len() <= 120 {
-        (Some(line), format!("{message} (in `{source_line}`)"))
+        (Some(at), format!("{message} (in `{source_line}`)"))
     } else {
-        (Some(line), message)
+        (Some(at), message)
     }
-}
-
-/// 1-based line number of the end of `prefix`.
-fn line_of(prefix: &[u8]) -> usize {
-    prefix.iter().filter(|&&b| b == b'\n').count() + 1
 }

@@ -13,16 +13,20 @@ mod geometry;
 mod gltf_accessor;
 mod gltf_container;
 mod gltf_loader;
+mod gltf_unsupported;
+mod ies;
 mod image_loader;
 mod level;
 mod level_toml;
 pub mod limits;
 mod obj_loader;
 mod sources;
+mod toml_place;
 mod types;
 
-pub use error::{LoadError, LoadErrorKind};
+pub use error::{LoadError, LoadErrorKind, LoadWarning, TextPos};
 pub use gltf_loader::load_gltf;
+pub use ies::{ies_texture_size, IesProfile, MAX_IES_ANGLES, MAX_IES_BYTES, MAX_IES_VALUES};
 pub use image_loader::{load_texture, texture_from_image};
 pub use level::{
     load_level, load_scene_file, DistributionImage, HeadlampProfile, IntensityDistribution, Level, Spawn,
@@ -30,4 +34,5 @@ pub use level::{
 };
 pub use obj_loader::load_obj;
 pub use sources::Fnv1a;
+pub use toml_place::key_place;
 pub use types::*;

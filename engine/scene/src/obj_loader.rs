@@ -91,7 +91,11 @@ pub(crate) fn load_obj_with(path: &Path, sources: &mut Sources) -> Result<Scene,
             Some(m.normals.chunks_exact(3).map(|v| [v[0], v[1], v[2]]).collect())
         } else {
             if !m.normals.is_empty() {
-                log::warn!("{}: object '{name}': only some vertices have normals; using flat normals", path.display());
+                builder.sources.warn(
+                    path,
+                    None,
+                    format!("object '{name}': only some vertices have normals; using flat normals"),
+                );
             }
             None
         };
@@ -123,7 +127,7 @@ fn load_library(obj: &Path, base: &Path, mtl: &Path, state: &RefCell<MtlState>) 
     }
     let written = mtl.to_string_lossy().replace('\\', "/");
     if written.trim().is_empty() {
-        log::warn!("{}: 'mtllib' without a file name; using the default material", obj.display());
+        st.sources.warn(obj, None, "'mtllib' without a file name; using the default material");
         return Ok(Default::default());
     }
     let missing = |e: &LoadError| matches!(e.kind, LoadErrorKind::NotFound);
@@ -131,7 +135,7 @@ fn load_library(obj: &Path, base: &Path, mtl: &Path, state: &RefCell<MtlState>) 
     let (bytes, file) = match read {
         Ok(found) => found,
         Err(e) if missing(&e) => {
-            log::warn!("{}: material library '{written}' not found; using the default material", obj.display());
+            st.sources.warn(obj, None, format!("material library '{written}' not found; using the default material"));
             return Ok(Default::default());
         }
         Err(e) => {

@@ -6,7 +6,7 @@
 
 use std::path::{Component, Path, PathBuf};
 
-use crate::error::{LoadError, LoadErrorKind};
+use crate::error::{LoadError, LoadErrorKind, LoadWarning, TextPos};
 use crate::limits::MAX_FILE_BYTES;
 
 /// 64-bit FNV-1a: tiny, dependency-free and stable across platforms and Rust versions, which
@@ -39,6 +39,7 @@ pub(crate) struct Sources {
     root: Option<PathBuf>,
     files: Vec<PathBuf>,
     hash: Fnv1a,
+    warnings: Vec<LoadWarning>,
 }
 
 impl Sources {
@@ -92,5 +93,20 @@ impl Sources {
 
     pub fn hash(&self) -> u64 {
         self.hash.finish()
+    }
+
+    /// Notes what the load accepted but the author should hear about; logged at once (so
+    /// `play` shows it in the terminal) and kept for [`crate::Level::warnings`]. A warning
+    /// repeated word for word is kept once.
+    pub fn warn(&mut self, path: &Path, at: Option<TextPos>, message: impl Into<String>) {
+        let warning = LoadWarning { path: path.to_path_buf(), at, message: message.into() };
+        if !self.warnings.contains(&warning) {
+            log::warn!("{warning}");
+            self.warnings.push(warning);
+        }
+    }
+
+    pub fn take_warnings(&mut self) -> Vec<LoadWarning> {
+        std::mem::take(&mut self.warnings)
     }
 }

@@ -247,22 +247,22 @@ fn level_dir(tag: &str, toml: &str) -> TempDir {
 fn level_toml_errors() {
     let base = "name = \"L\"\nscene = \"scene.obj\"\n";
     let cases: &[(&str, &str, &[&str])] = &[
-        ("syntax", "name = \"L\"\nscene = \"scene.obj\"\npower = = 3\n", &["invalid TOML at line 3"]),
-        ("unknown", &format!("{base}[headlamp]\npowr = 2.0\n"), &["line 4", "unknown field `powr`"]),
+        ("syntax", "name = \"L\"\nscene = \"scene.obj\"\npower = = 3\n", &["level.toml:3:9: invalid TOML"]),
+        ("unknown", &format!("{base}[headlamp]\npowr = 2.0\n"), &["level.toml:4:1: invalid level: unknown field `powr`"]),
         ("unknown-top", &format!("{base}exposre = 2.0\n"), &["unknown field `exposre`"]),
         ("missing-name", "scene = \"scene.obj\"\n", &["missing field `name`"]),
         ("escape", "name = \"L\"\nscene = \"../../etc/passwd\"\n", &["path '../../etc/passwd' escapes the level folder"]),
         ("absolute", "name = \"L\"\nscene = \"/etc/passwd\"\n", &["escapes the level folder"]),
-        ("cone", &format!("{base}[headlamp]\nprofile = \"spot\"\ninner_deg = 30.0\nouter_deg = 30.0\n"), &["outer_deg", "greater than inner_deg"]),
-        ("light-cone", &format!("{base}[[lights]]\nkind = \"spot\"\nposition = [0,0,0]\ndirection = [0,-1,0]\ninner_deg = 40.0\nouter_deg = 35.0\n"), &["lights[0].outer_deg"]),
-        ("power", &format!("{base}[headlamp]\npower = -1.0\n"), &["headlamp.power", ">= 0"]),
+        ("cone", &format!("{base}[headlamp]\nprofile = \"spot\"\ninner_deg = 30.0\nouter_deg = 30.0\n"), &["level.toml:6:1:", "outer_deg", "greater than inner_deg"]),
+        ("light-cone", &format!("{base}[[lights]]\nkind = \"spot\"\nposition = [0,0,0]\ndirection = [0,-1,0]\ninner_deg = 40.0\nouter_deg = 35.0\n"), &["level.toml:8:1:", "lights[0].outer_deg"]),
+        ("power", &format!("{base}[headlamp]\npower = -1.0\n"), &["level.toml:4:1:", "headlamp.power", ">= 0"]),
         ("fov", &format!("{base}[headlamp]\nfov_deg = 180.0\n"), &["headlamp.fov_deg"]),
         ("exposure", &format!("{base}exposure = 0.0\n"), &["exposure"]),
         ("zero-dir", &format!("{base}[[lights]]\nkind = \"directional\"\ndirection = [0,0,0]\n"), &["lights[0].direction", "non-zero"]),
-        ("no-pos", &format!("{base}[[lights]]\nkind = \"point\"\n"), &["lights[0]", "needs a position"]),
+        ("no-pos", &format!("{base}[[lights]]\nkind = \"point\"\n"), &["level.toml:3:1:", "lights[0]", "needs a position"]),
         ("kind", &format!("{base}[[lights]]\nkind = \"area\"\nposition = [0,0,0]\n"), &["area"]),
         ("type", &format!("{base}exposure = \"bright\"\n"), &["exposure"]),
-        ("pitch", &format!("{base}[spawn]\nposition = [0,0,0]\npitch_deg = 95.0\n"), &["spawn.pitch_deg"]),
+        ("pitch", &format!("{base}[spawn]\nposition = [0,0,0]\npitch_deg = 95.0\n"), &["level.toml:5:1:", "spawn.pitch_deg"]),
         ("empty-name", "name = \"  \"\nscene = \"scene.obj\"\n", &["name"]),
     ];
     for (tag, toml, words) in cases {
