@@ -30,6 +30,17 @@ pub enum Command {
     Replay(ReplayArgs),
     /// Turn a hand-written input script into a replay, without a window.
     Script(ScriptArgs),
+    /// Validate a level without a window or GPU: every error and warning as FILE:LINE:COL lines.
+    Check(CheckArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct CheckArgs {
+    /// A level folder, its level.toml, or a bare .gltf/.glb/.obj file.
+    pub level: PathBuf,
+    /// Print the findings as one JSON document (for editors and tools).
+    #[arg(long)]
+    pub json: bool,
 }
 
 #[derive(clap::Args, Debug, Default)]
@@ -172,18 +183,32 @@ pub struct ReplayArgs {
     /// No window: re-simulate every tick (checking the stored hashes) and print `ticks=N hash=H`.
     #[arg(long)]
     pub headless: bool,
-    /// With --headless: render a PNG after each of these ticks (0 = the start), e.g. 60,120.
-    #[arg(long, value_delimiter = ',', requires = "headless")]
+    /// With --headless (or --goldens --update): render a PNG after each of these ticks
+    /// (0 = the start), e.g. 60,120.
+    #[arg(long, value_delimiter = ',')]
     pub snapshots: Vec<u32>,
     /// Folder for the snapshots (created if missing).
     #[arg(long, value_name = "DIR", requires = "headless")]
     pub out_dir: Option<PathBuf>,
-    /// Snapshot size in pixels.
-    #[arg(long, default_value = "640x360", value_parser = parse_size)]
-    pub size: (u32, u32),
+    /// Snapshot size in pixels [default: 640x360; with --goldens, the goldens' size].
+    #[arg(long, value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
     /// Re-simulate without rendering and check every tick's state hash; prints `ok ticks=N`.
-    #[arg(long, conflicts_with_all = ["headless", "snapshots", "out_dir"])]
+    #[arg(long, conflicts_with_all = ["headless", "snapshots", "out_dir", "goldens"])]
     pub verify: bool,
+    /// Headless regression test: render the frames of the ticks whose goldens DIR holds
+    /// (DIR/tick_NNNNNN.png) and compare them by FLIP, as the project's frame tests do; a line
+    /// per frame, exit 1 on any failure, `.actual.png` and `.diff.png` beside each failure.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["headless", "out_dir"])]
+    pub goldens: Option<PathBuf>,
+    /// With --goldens: write the goldens instead (of --snapshots ticks, else of the ticks
+    /// already there, else of four ticks spread over the replay).
+    #[arg(long, requires = "goldens")]
+    pub update: bool,
+}
+
+impl ReplayArgs {
+    pub const DEFAULT_SIZE: (u32, u32) = (640, 360);
 }
 
 #[derive(clap::Args, Debug)]

@@ -3,13 +3,16 @@
 
 pub mod actors;
 pub mod bench;
+pub mod check;
 pub mod cli;
 pub mod command_sampler;
 pub mod game_events;
+pub mod golden;
 pub mod play;
 pub mod recording;
 pub mod render_cmd;
 pub mod replay_cmd;
+pub mod replay_goldens;
 pub mod script;
 pub mod script_trace;
 pub mod sim;

@@ -1,4 +1,4 @@
-//! `headlamp`: play (default), render headless, bench, record, replay, or script a replay. Errors end the program with one line.
+//! `headlamp`: play (default), render headless, bench, record, replay, script a replay, or check a level. Errors end the program with one line.
 
 use std::process::ExitCode;
 
@@ -22,6 +22,7 @@ fn main() -> ExitCode {
         }
     };
     let result = match cli.command.unwrap_or(Command::Play(PlayArgs::default())) {
+        Command::Check(args) => return game::check::run(&args),
         Command::Play(args) => game::play::run(&args.level.unwrap_or_else(game::default_level)),
         Command::Render(args) => game::render_cmd::run(&args),
         Command::Bench(args) => game::bench::run(&args),

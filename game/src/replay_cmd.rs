@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{anyhow, bail, Context};
 use engine::clock::FixedClock;
 use engine::gpu::Gpu;
-use engine::headless::{HeadlessTarget, ImageKind};
+use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::renderer::Renderer;
 
 use crate::cli::{RecordArgs, ReplayArgs, ScriptArgs};
@@ -42,14 +42,21 @@ pub fn record(args: &RecordArgs) -> anyhow::Result<()> {
 }
 
 pub fn replay(args: &ReplayArgs) -> anyhow::Result<()> {
+    if !args.snapshots.is_empty() && !args.headless && args.goldens.is_none() {
+        bail!("--snapshots needs --headless or --goldens");
+    }
     let loaded = LoadedReplay::open(&args.file, args.level.as_deref())?;
+    if let Some(dir) = &args.goldens {
+        return crate::replay_goldens::run(&loaded, dir, &args.snapshots, args.size, args.update);
+    }
     if args.verify {
         let end = loaded.verify()?;
         println!("ok ticks={} outcome={}", end.tick, end.outcome.name());
         return Ok(());
     }
     if args.headless {
-        let end = headless(&loaded, &args.snapshots, args.out_dir.as_deref(), args.size)?;
+        let size = args.size.unwrap_or(ReplayArgs::DEFAULT_SIZE);
+        let end = headless(&loaded, &args.snapshots, args.out_dir.as_deref(), size)?;
         println!("ticks={} hash={:016x} outcome={}", end.tick, end.hash(), end.outcome.name());
         return Ok(());
     }
@@ -69,24 +76,42 @@ pub fn headless(
     out_dir: Option<&Path>,
     size: (u32, u32),
 ) -> anyhow::Result<WorldState> {
-    let ticks = loaded.commands.len() as u32;
-    if let Some(&late) = snapshots.iter().find(|&&t| t > ticks) {
-        bail!("--snapshots: tick {late} is past the end of {} ({ticks} ticks)", loaded.path.display());
-    }
-    let mut snapshots = snapshots.to_vec();
-    snapshots.sort_unstable();
-    snapshots.dedup();
-    let mut shooter = match (snapshots.is_empty(), out_dir) {
+    let dir = match (snapshots.is_empty(), out_dir) {
         (true, _) => None,
         (false, None) => bail!("--snapshots needs --out-dir to write them to"),
-        (false, Some(dir)) => Some(SnapshotRenderer::new(loaded, dir, size)?),
+        (false, Some(dir)) => {
+            std::fs::create_dir_all(dir).with_context(|| format!("--out-dir {}", dir.display()))?;
+            Some(dir)
+        }
     };
+    frames(loaded, snapshots, size, |tick, image| match dir {
+        Some(dir) => Ok(image.save(dir.join(snapshot_name(tick)))?),
+        None => Ok(()),
+    })
+}
+
+/// Re-simulates a replay without a window, checking every tick's hash, and hands `frame` the
+/// picture after each of `ticks` (0 = the start; in tick order, each once).
+pub fn frames(
+    loaded: &LoadedReplay,
+    ticks: &[u32],
+    size: (u32, u32),
+    mut frame: impl FnMut(u32, &image::RgbaImage) -> anyhow::Result<()>,
+) -> anyhow::Result<WorldState> {
+    let end = loaded.commands.len() as u32;
+    if let Some(&late) = ticks.iter().find(|&&t| t > end) {
+        bail!("--snapshots: tick {late} is past the end of {} ({end} ticks)", loaded.path.display());
+    }
+    let mut ticks = ticks.to_vec();
+    ticks.sort_unstable();
+    ticks.dedup();
+    let mut shooter = if ticks.is_empty() { None } else { Some(SnapshotRenderer::new(loaded, size)?) };
     let mut sim = loaded.simulation()?;
-    let mut wanted = snapshots.iter().peekable();
+    let mut wanted = ticks.iter().peekable();
     for i in 0..=loaded.commands.len() {
         while wanted.next_if_eq(&&(i as u32)).is_some() {
             if let Some(s) = &mut shooter {
-                s.shoot(&sim)?;
+                frame(i as u32, &s.shoot(&sim)?)?;
             }
         }
         if i < loaded.commands.len() {
@@ -96,33 +121,31 @@ pub fn headless(
     Ok(sim.state)
 }
 
-/// Renders the game's view at given ticks to PNG files.
+/// Renders the game's view of a simulation, headless.
 struct SnapshotRenderer {
     gpu: Gpu,
     renderer: Renderer,
     target: HeadlessTarget,
     view: WorldView,
-    dir: PathBuf,
 }
 
 impl SnapshotRenderer {
-    fn new(loaded: &LoadedReplay, dir: &Path, size: (u32, u32)) -> anyhow::Result<Self> {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out-dir {}", dir.display()))?;
+    fn new(loaded: &LoadedReplay, size: (u32, u32)) -> anyhow::Result<Self> {
         let gpu = Gpu::headless()?;
         let (plugins, _) = crate::plugins(loaded.gi.clone());
         let mut renderer = Renderer::new(&gpu, &loaded.level.scene, plugins)?;
         let target = HeadlessTarget::new(&gpu, size.0, size.1, ImageKind::Display);
         let mut view = WorldView::new(&loaded.level);
         view.add_meshes(&mut renderer, &gpu);
-        Ok(Self { gpu, renderer, target, view, dir: dir.to_owned() })
+        Ok(Self { gpu, renderer, target, view })
     }
 
-    fn shoot(&mut self, sim: &Simulation) -> anyhow::Result<()> {
+    fn shoot(&mut self, sim: &Simulation) -> anyhow::Result<image::RgbaImage> {
         self.view.at(sim.entities(), &sim.state);
-        let image = self.target.render(&self.gpu, &mut self.renderer, &self.view.view)?;
-        let path = self.dir.join(snapshot_name(sim.state.tick));
-        engine::output::save(&image, &path)?;
-        Ok(())
+        match self.target.render(&self.gpu, &mut self.renderer, &self.view.view)? {
+            RenderedImage::Display(image) => Ok(image),
+            RenderedImage::Linear(_) => bail!("a display target rendered linear values"),
+        }
     }
 }
 

@@ -110,6 +110,46 @@ fn headless_snapshots_are_pngs_of_the_game() {
 }
 
 #[test]
+fn goldens_are_written_then_compared_and_a_changed_frame_fails() {
+    let dir = scratch("goldens");
+    let (replay, _) = script(&dir, WALK, &cellar());
+    let (r, goldens) = (replay.to_str().unwrap(), dir.join("goldens"));
+    let g = goldens.to_str().unwrap();
+    refused(&headlamp(&["replay", r, "--goldens", g]), "no goldens");
+
+    // Four frames spread over the replay, at the size asked for.
+    let out = stdout(&headlamp(&["replay", r, "--goldens", g, "--update", "--size", "160x90"]));
+    assert_eq!(out.lines().filter(|l| l.ends_with(": written")).count(), 4, "{out}");
+    for t in ["tick_000000.png", "tick_000043.png", "tick_000087.png", "tick_000131.png"] {
+        assert_eq!(image::image_dimensions(goldens.join(t)).unwrap(), (160, 90), "{t}");
+    }
+
+    // Compared at the goldens' own size: all match.
+    let out = stdout(&headlamp(&["replay", r, "--goldens", g]));
+    assert_eq!(out.lines().filter(|l| l.contains(": ok (mean FLIP")).count(), 4, "{out}");
+
+    // A golden that no longer matches: a line naming it, the frame and the difference beside
+    // it, exit 1.
+    image::RgbaImage::from_pixel(160, 90, image::Rgba([255, 255, 255, 255]))
+        .save(goldens.join("tick_000043.png"))
+        .unwrap();
+    let out = headlamp(&["replay", r, "--goldens", g]);
+    let printed = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{printed}");
+    assert!(printed.contains("tick_000043.png: mean FLIP error"), "{printed}");
+    assert_eq!(printed.lines().filter(|l| l.contains(": ok (mean FLIP")).count(), 3, "{printed}");
+    assert!(goldens.join("tick_000043.actual.png").exists() && goldens.join("tick_000043.diff.png").exists());
+    refused(&out, "1 of 4 frames differ from their goldens");
+
+    // --update re-makes the ticks already there (clearing what the failure left); then they
+    // match again.
+    stdout(&headlamp(&["replay", r, "--goldens", g, "--update"]));
+    assert!(!goldens.join("tick_000043.actual.png").exists() && !goldens.join("tick_000043.diff.png").exists());
+    stdout(&headlamp(&["replay", r, "--goldens", g]));
+    refused(&headlamp(&["replay", r, "--snapshots", "5"]), "--snapshots needs --headless or --goldens");
+}
+
+#[test]
 fn damaged_replays_are_refused_by_name() {
     let dir = scratch("bad");
     let (replay, _) = script(&dir, WALK, &cellar());

@@ -16,9 +16,28 @@
 //! `objective` (the HUD's objective line). Other `extras` keys are ignored, so files exported
 //! with unrelated custom properties still load.
 
+use std::fmt;
+use std::path::PathBuf;
+
 use glam::Vec3;
 use scene::{Level, NodeExtras};
 use serde_json::Value;
+
+/// A marker or a `[game]` key the game cannot use: the file, then the node or key and what is
+/// wrong with it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EntityError {
+    pub file: PathBuf,
+    pub message: String,
+}
+
+impl fmt::Display for EntityError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.file.display(), self.message)
+    }
+}
+
+impl std::error::Error for EntityError {}
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PickupKind {
@@ -89,15 +108,15 @@ pub struct LevelEntities {
 impl LevelEntities {
     /// Reads the markers (in file order, so the simulation iterates them the same way every
     /// run) and the rules. Errors name the file and the node or key.
-    pub fn read(level: &Level) -> Result<Self, String> {
-        let scene_file = level.scene_path.display().to_string();
+    pub fn read(level: &Level) -> Result<Self, EntityError> {
+        let in_scene = |message: String| EntityError { file: level.scene_path.clone(), message };
         let mut pickups = Vec::new();
         let mut enemies = Vec::new();
         let mut routes: Vec<(String, i64, Vec3)> = Vec::new();
         let mut enemy_routes = Vec::new();
         let mut exit = None;
         for node in &level.scene.extras {
-            let at = |msg: String| format!("{scene_file}: node '{}': {msg}", node.node_name);
+            let at = |msg: String| in_scene(format!("node '{}': {msg}", node.node_name));
             let Some(extras) = node.extras.as_object() else { continue };
             let position = node.world.w_axis.truncate();
             if let Some(kind) = extras.get("pickup") {
@@ -141,7 +160,7 @@ impl LevelEntities {
             let Some(route) = route else { continue };
             enemy.route = routes.iter().filter(|r| r.0 == route).map(|r| r.2).collect();
             if enemy.route.is_empty() {
-                return Err(format!("{scene_file}: node '{}': no waypoints of route '{route}'", enemy.name));
+                return Err(in_scene(format!("node '{}': no waypoints of route '{route}'", enemy.name)));
             }
         }
         let rules = Rules::read(level, enemies.len(), exit.is_some())?;
@@ -168,10 +187,10 @@ fn number(node: &NodeExtras, key: &str, default: f32) -> Result<f32, String> {
 }
 
 impl Rules {
-    fn read(level: &Level, enemies: usize, has_exit: bool) -> Result<Self, String> {
+    fn read(level: &Level, enemies: usize, has_exit: bool) -> Result<Self, EntityError> {
         let file = match &level.root {
-            Some(root) => root.join("level.toml").display().to_string(),
-            None => level.scene_path.display().to_string(),
+            Some(root) => root.join("level.toml"),
+            None => level.scene_path.clone(),
         };
         let mut rules = Rules {
             battery_seconds: 150.0,
@@ -182,7 +201,7 @@ impl Rules {
             },
         };
         for (key, value) in &level.game {
-            let at = |msg: &str| format!("{file}: [game] {key}: {msg}");
+            let at = |msg: &str| EntityError { file: file.clone(), message: format!("[game] {key}: {msg}") };
             match key.as_str() {
                 "battery_seconds" => {
                     rules.battery_seconds = value
@@ -273,7 +292,7 @@ mod tests {
             (vec![], "battery_seconds = 0", "[game] battery_seconds: must be"),
             (vec![], "lives = 3", "[game] lives: unknown key"),
         ] {
-            let e = LevelEntities::read(&level(&markers, game)).unwrap_err();
+            let e = LevelEntities::read(&level(&markers, game)).unwrap_err().to_string();
             assert!(e.contains(needle), "{e}");
         }
     }

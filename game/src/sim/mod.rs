@@ -117,8 +117,24 @@ impl LevelWorld {
 pub fn level_world(level: &Level) -> anyhow::Result<Arc<LevelWorld>> {
     let collision = LevelCollision::from_scene(&level.scene)
         .map_err(|e| anyhow::anyhow!("{}: cannot build collision geometry: {e}", level.scene_path.display()))?;
-    let entities = LevelEntities::read(level).map_err(anyhow::Error::msg)?;
+    let entities = LevelEntities::read(level)?;
     Ok(Arc::new(LevelWorld::new(collision, entities)))
+}
+
+/// The exit is reached within its radius and this far above or below the feet, m.
+pub const EXIT_HEIGHT: f32 = 2.0;
+
+/// Where the player starts: feet, yaw and pitch (radians). The level's spawn, or for a bare
+/// scene file the feet below the first view's eye.
+pub fn start_pose(level: &Level) -> (Vec3, f32, f32) {
+    match &level.spawn {
+        Some(s) => (s.position, s.yaw, s.pitch),
+        None => {
+            let camera = engine::start_view::initial_camera(level, &Default::default());
+            let f = camera.forward();
+            (camera.position - Vec3::Y * scene::DEFAULT_EYE_HEIGHT, (-f.x).atan2(-f.z), f.y.clamp(-1.0, 1.0).asin())
+        }
+    }
 }
 
 /// The world and the fixed things it is simulated against.
@@ -141,14 +157,7 @@ impl Simulation {
     /// The level as it starts: the player at the spawn (or, for a bare scene file, below the
     /// first view's eye), lamp on and attached, everything the level places where it says.
     pub fn new(level: &Level, world: Arc<LevelWorld>, tick_rate: u32, seed: u64) -> Self {
-        let (feet, yaw, pitch) = match &level.spawn {
-            Some(s) => (s.position, s.yaw, s.pitch),
-            None => {
-                let camera = engine::start_view::initial_camera(level, &Default::default());
-                let f = camera.forward();
-                (camera.position - Vec3::Y * scene::DEFAULT_EYE_HEIGHT, (-f.x).atan2(-f.z), f.y.clamp(-1.0, 1.0).asin())
-            }
-        };
+        let (feet, yaw, pitch) = start_pose(level);
         let units = |radians: f32| command::angle_units(radians).round() as i64;
         let yaw = units(yaw).rem_euclid(65536) as u16;
         let pitch = units(pitch).clamp(-(player::MAX_PITCH as i64), player::MAX_PITCH as i64) as i16;
@@ -227,7 +236,7 @@ impl Simulation {
         let s = &mut self.state;
         let exit_reached = self.world.entities.exit.is_some_and(|exit| {
             let d = exit.position - s.player.body.position;
-            d.x * d.x + d.z * d.z <= exit.radius * exit.radius && d.y.abs() < 2.0
+            d.x * d.x + d.z * d.z <= exit.radius * exit.radius && d.y.abs() < EXIT_HEIGHT
         });
         s.outcome = if !s.player.alive() {
             Outcome::Lost

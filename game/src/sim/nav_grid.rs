@@ -101,28 +101,10 @@ impl NavGrid {
     /// neighbouring cell one step nearer. None when either end is off the grid or no way joins
     /// them. Ties go to the first neighbour in [`NEIGHBOURS`] order: deterministic.
     pub fn next_step(&self, from: Vec3, to: Vec3) -> Option<Vec3> {
-        let start = self.cell_of(from)?;
+        let start = self.nearest_open(self.cell_of(from)?)?;
         let goal = self.nearest_open(self.cell_of(to)?)?;
-        // Breadth-first from the goal (diagonals cost the same as sides, which keeps it a BFS;
-        // the crawler steers straight once it can see its target anyway).
-        let mut distance = vec![u32::MAX; self.floor.len()];
+        let distance = self.steps_from(goal, Some(start));
         let index = |(i, j): (usize, usize)| j * self.width + i;
-        let mut queue = std::collections::VecDeque::from([goal]);
-        distance[index(goal)] = 0;
-        let start = self.nearest_open(start)?;
-        while let Some((i, j)) = queue.pop_front() {
-            if (i, j) == start {
-                break;
-            }
-            for (di, dj) in NEIGHBOURS {
-                let (ni, nj) = (i as i32 + di, j as i32 + dj);
-                if self.passable(i as i32, j as i32, di, dj) && distance[index((ni as usize, nj as usize))] == u32::MAX
-                {
-                    distance[index((ni as usize, nj as usize))] = distance[index((i, j))] + 1;
-                    queue.push_back((ni as usize, nj as usize));
-                }
-            }
-        }
         let here = distance[index(start)];
         if here == u32::MAX {
             return None;
@@ -139,6 +121,36 @@ impl NavGrid {
             .map(|c| self.centre(c))
     }
 
+    /// Every cell one can walk to from `from` (with no open cell there, or off the grid: None).
+    pub fn reachable_from(&self, from: Vec3) -> Option<Reachable<'_>> {
+        let start = self.nearest_open(self.cell_of(from)?)?;
+        Some(Reachable { grid: self, steps: self.steps_from(start, None) })
+    }
+
+    /// Steps from `goal` to every cell, breadth-first (diagonals cost the same as sides, which
+    /// keeps it a BFS; a crawler steers straight once it can see its target anyway), stopping
+    /// once `until` is reached. u32::MAX: not reached.
+    fn steps_from(&self, goal: (usize, usize), until: Option<(usize, usize)>) -> Vec<u32> {
+        let mut distance = vec![u32::MAX; self.floor.len()];
+        let index = |(i, j): (usize, usize)| j * self.width + i;
+        let mut queue = std::collections::VecDeque::from([goal]);
+        distance[index(goal)] = 0;
+        while let Some((i, j)) = queue.pop_front() {
+            if Some((i, j)) == until {
+                break;
+            }
+            for (di, dj) in NEIGHBOURS {
+                let (ni, nj) = (i as i32 + di, j as i32 + dj);
+                if self.passable(i as i32, j as i32, di, dj) && distance[index((ni as usize, nj as usize))] == u32::MAX
+                {
+                    distance[index((ni as usize, nj as usize))] = distance[index((i, j))] + 1;
+                    queue.push_back((ni as usize, nj as usize));
+                }
+            }
+        }
+        distance
+    }
+
     /// The cell itself if open, else an open one of its neighbours (a body pressed against a
     /// wall can have its centre in a blocked cell).
     fn nearest_open(&self, (i, j): (usize, usize)) -> Option<(usize, usize)> {
@@ -147,6 +159,39 @@ impl NavGrid {
             .map(|(di, dj)| (i as i32 + di, j as i32 + dj))
             .find(|&(a, b)| self.open(a, b).is_some())
             .map(|(a, b)| (a as usize, b as usize))
+    }
+}
+
+/// The part of a [`NavGrid`] one can walk to from a starting point.
+pub struct Reachable<'a> {
+    grid: &'a NavGrid,
+    steps: Vec<u32>,
+}
+
+impl Reachable<'_> {
+    /// Whether `p` (its cell, or an open neighbour of it: a thing against a wall) is reached.
+    pub fn contains(&self, p: Vec3) -> bool {
+        let grid = self.grid;
+        grid.cell_of(p)
+            .and_then(|c| grid.nearest_open(c))
+            .is_some_and(|(i, j)| self.steps[j * grid.width + i] != u32::MAX)
+    }
+
+    /// Whether some reached cell comes within `radius` of `p` horizontally (a body can stand
+    /// anywhere in its cell, so half a cell's diagonal is allowed on top) with its floor within
+    /// `height` of `p`: a thing on a crate, grabbed from beside it.
+    pub fn comes_within(&self, p: Vec3, radius: f32, height: f32) -> bool {
+        let grid = self.grid;
+        let reach = radius + grid.cell * std::f32::consts::FRAC_1_SQRT_2;
+        let cells = (reach / grid.cell).ceil() as i32 + 1;
+        let (ci, cj) =
+            (((p.x - grid.origin.0) / grid.cell).round() as i32, ((p.z - grid.origin.1) / grid.cell).round() as i32);
+        (-cells..=cells).flat_map(|dj| (-cells..=cells).map(move |di| (ci + di, cj + dj))).any(|(i, j)| {
+            let Some(floor) = grid.open(i, j) else { return false };
+            let (x, z) = (grid.origin.0 + i as f32 * grid.cell, grid.origin.1 + j as f32 * grid.cell);
+            let reached = self.steps[j as usize * grid.width + i as usize] != u32::MAX;
+            reached && (x - p.x).hypot(z - p.z) <= reach && (floor - p.y).abs() <= height
+        })
     }
 }
 
@@ -218,6 +263,11 @@ mod tests {
         let grid = NavGrid::build(&level, 1.9, 1.5);
         // Too wide for the gap.
         assert_eq!(grid.next_step(Vec3::new(-2.0, 0.0, -3.0), Vec3::new(-2.0, 0.0, 3.0)), None);
+        let reach = grid.reachable_from(Vec3::new(-2.0, 0.0, -3.0)).unwrap();
+        assert!(reach.contains(Vec3::new(2.0, 0.0, -3.0)) && !reach.contains(Vec3::new(-2.0, 0.0, 3.0)));
+        let narrow = NavGrid::build(&level, 0.35, 1.5);
+        let reach = narrow.reachable_from(Vec3::new(-2.0, 0.0, -3.0)).unwrap();
+        assert!(reach.contains(Vec3::new(-2.0, 0.0, 3.0)), "the gap lets a narrow body through");
         assert_eq!(grid.next_step(Vec3::new(50.0, 0.0, 0.0), Vec3::ZERO), None, "off the grid");
     }
 }

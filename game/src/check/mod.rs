@@ -1,0 +1,149 @@
+//! `headlamp check LEVEL`: validates a level without a window or a GPU, through the same code
+//! the game loads it with (`scene::load_level`, then `sim::level_world`), so what `check`
+//! accepts, the game loads. On top of that it checks what only shows in play: a spawn inside a
+//! wall, a pickup or exit nobody can walk to, a crawler that cannot reach the player.
+//!
+//! Each finding is one line, `FILE:LINE:COL: error|warning: MESSAGE` (`FILE: …` where no
+//! place in the file is known), or with `--json` one JSON document for tools.
+
+mod gameplay;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use scene::TextPos;
+use serde::Serialize;
+
+use crate::cli::CheckArgs;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Severity {
+    Error,
+    Warning,
+}
+
+/// One finding about a level, placed in the file it is about.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Diagnostic {
+    pub file: PathBuf,
+    pub at: Option<TextPos>,
+    pub severity: Severity,
+    pub message: String,
+}
+
+impl std::fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.file.display())?;
+        if let Some(at) = self.at {
+            write!(f, ":{}:{}", at.line, at.column)?;
+        }
+        let severity = match self.severity {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        };
+        write!(f, ": {severity}: {}", self.message)
+    }
+}
+
+impl Diagnostic {
+    pub fn error(file: impl Into<PathBuf>, at: Option<TextPos>, message: impl Into<String>) -> Self {
+        Self { file: file.into(), at, severity: Severity::Error, message: message.into() }
+    }
+
+    pub fn warning(file: impl Into<PathBuf>, at: Option<TextPos>, message: impl Into<String>) -> Self {
+        Self { file: file.into(), at, severity: Severity::Warning, message: message.into() }
+    }
+}
+
+/// Everything `check` finds wrong with the level at `path`, errors and warnings, in the order
+/// the game would meet them. No errors: the game loads and starts it.
+pub fn check_level(path: &Path) -> Vec<Diagnostic> {
+    let level = match scene::load_level(path) {
+        Ok(level) => level,
+        Err(e) => return vec![Diagnostic::error(&e.path, e.at, e.kind.to_string())],
+    };
+    let mut found: Vec<Diagnostic> =
+        level.warnings.iter().map(|w| Diagnostic::warning(&w.path, w.at, w.message.clone())).collect();
+    found.extend(gameplay::check(&level));
+    found
+}
+
+/// Runs `headlamp check`: prints the findings and exits 1 when there is an error.
+pub fn run(args: &CheckArgs) -> ExitCode {
+    // The loader also logs its warnings for `play`; here they are the report itself.
+    log::set_max_level(log::LevelFilter::Error);
+    let found = check_level(&args.level);
+    let errors = found.iter().filter(|d| d.severity == Severity::Error).count();
+    let warnings = found.len() - errors;
+    if args.json {
+        println!("{}", to_json(&args.level, &found));
+    } else {
+        for d in &found {
+            println!("{d}");
+        }
+        let verdict = if errors == 0 { "ok" } else { "not playable" };
+        println!(
+            "{}: {verdict} ({} error{}, {} warning{})",
+            args.level.display(),
+            errors,
+            plural(errors),
+            warnings,
+            plural(warnings)
+        );
+    }
+    if errors == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
+
+#[derive(Serialize)]
+struct JsonReport<'a> {
+    level: String,
+    ok: bool,
+    errors: usize,
+    warnings: usize,
+    diagnostics: Vec<JsonDiagnostic<'a>>,
+}
+
+#[derive(Serialize)]
+struct JsonDiagnostic<'a> {
+    file: String,
+    line: Option<usize>,
+    column: Option<usize>,
+    severity: Severity,
+    message: &'a str,
+}
+
+/// `{"level", "ok", "errors", "warnings", "diagnostics": [{"file", "line", "column",
+/// "severity", "message"}]}`; line and column are null where no place is known.
+pub fn to_json(level: &Path, found: &[Diagnostic]) -> String {
+    let errors = found.iter().filter(|d| d.severity == Severity::Error).count();
+    let report = JsonReport {
+        level: level.display().to_string(),
+        ok: errors == 0,
+        errors,
+        warnings: found.len() - errors,
+        diagnostics: found
+            .iter()
+            .map(|d| JsonDiagnostic {
+                file: d.file.display().to_string(),
+                line: d.at.map(|a| a.line),
+                column: d.at.map(|a| a.column),
+                severity: d.severity,
+                message: &d.message,
+            })
+            .collect(),
+    };
+    serde_json::to_string_pretty(&report).expect("a report of strings and numbers serialises")
+}
