@@ -4,6 +4,7 @@
 //!
 //! ```toml
 //! name = "The Cellar"
+//! description = "Four rooms..."   # one line, shown under the name in the level menu
 //! scene = "scene.gltf"            # relative to the folder; may not leave it
 //! exposure = 8.0                  # > 0; absent = renderer picks
 //!
@@ -57,6 +58,8 @@ pub const DEFAULT_EYE_HEIGHT: f32 = 1.6;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Level {
     pub name: String,
+    /// One line for the level menu; empty when level.toml gives none.
+    pub description: String,
     /// The level folder; None when a bare scene file was loaded.
     pub root: Option<PathBuf>,
     pub scene_path: PathBuf,
@@ -158,6 +161,7 @@ pub fn load_level(path: &Path) -> Result<Level, LoadError> {
     let scene = load_scene_with(path, &mut sources)?;
     Ok(Level {
         name: path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+        description: String::new(),
         root: None,
         scene_path: path.to_path_buf(),
         scene,
@@ -200,6 +204,7 @@ fn load_level_folder(dir: &Path) -> Result<Level, LoadError> {
     scene.lights.extend(parsed.lights);
     Ok(Level {
         name: parsed.name,
+        description: parsed.description,
         root: Some(dir.to_path_buf()),
         scene_path,
         scene,

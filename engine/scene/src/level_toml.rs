@@ -23,6 +23,8 @@ use crate::{LightKind, PunctualLight};
 #[serde(deny_unknown_fields)]
 struct LevelToml {
     name: String,
+    #[serde(default)]
+    description: String,
     scene: String,
     exposure: Option<f32>,
     spawn: Option<SpawnToml>,
@@ -81,6 +83,7 @@ enum LightKindToml {
 /// after the scene (so the content hash order is level.toml, scene files, profile).
 pub(crate) struct ParsedLevel {
     pub name: String,
+    pub description: String,
     pub scene: String,
     pub exposure: Option<f32>,
     pub spawn: Option<Spawn>,
@@ -151,8 +154,12 @@ pub(crate) fn parse_level_toml(bytes: &[u8], path: &Path) -> Result<ParsedLevel,
     }
     let warnings = ignored.into_iter().map(|msg| (key_place(text, leading_key(&msg)), msg)).collect();
     check_headlamp_values(&raw.headlamp).map_err(bad)?;
+    if raw.description.contains('\n') {
+        return Err(bad("description must be one line (the level menu shows it under the name)".into()));
+    }
     Ok(ParsedLevel {
         name: raw.name,
+        description: raw.description,
         scene: raw.scene,
         exposure: raw.exposure,
         spawn,

@@ -176,6 +176,8 @@ pub struct GameRules {
 #[derive(Clone, Debug)]
 pub struct Level {
     pub name: &'static str,
+    /// One line for the game's level menu.
+    pub description: &'static str,
     pub exposure: f64,
     pub rooms: Vec<Room>,
     pub doorways: Vec<Doorway>,
@@ -395,6 +397,7 @@ pub fn cellar() -> Level {
 
     Level {
         name: "The Cellar",
+        description: "Four rooms under the house, a hall and a storeroom: four crawlers, one way out",
         // A white wall 4 m in front of a P = 40 headlamp has radiance 0.8 * 40 / (pi * 16) ≈ 0.64.
         // The renderer multiplies by the exposure and applies Narkowicz's ACES fit
         // (shaders/present.wgsl): 0.3 * 0.64 ≈ 0.19 → 0.28 linear ≈ 0.57 sRGB, a mid-grey;
