@@ -49,6 +49,7 @@ use crate::ies::IesProfile;
 use crate::level_toml::parse_level_toml;
 use crate::obj_loader::load_obj_with;
 use crate::sources::Sources;
+use crate::zip_level::is_zip;
 use crate::Scene;
 
 /// Height of the eyes above the feet, metres (the spawn position is the feet).
@@ -78,6 +79,8 @@ pub struct Level {
     /// What the load accepted but the author should hear about (ignored keys and glTF
     /// features, a missing .mtl), in load order; already logged.
     pub warnings: Vec<LoadWarning>,
+    /// Every file the load read (for a zipped level, the archive): what live reload watches.
+    pub files: Vec<PathBuf>,
 }
 
 /// Where the player starts.
@@ -147,8 +150,9 @@ pub struct DistributionImage {
     pub values: Vec<[f32; 3]>,
 }
 
-/// Loads a level from a folder holding `level.toml`, from the `level.toml` file itself, or
-/// from a bare .gltf/.glb/.obj file (then named after the file, with default settings).
+/// Loads a level from a folder holding `level.toml`, from the `level.toml` file itself, from a
+/// `.zip` of such a folder (read in place), or from a bare .gltf/.glb/.obj file (then named
+/// after the file, with default settings).
 pub fn load_level(path: &Path) -> Result<Level, LoadError> {
     let meta = std::fs::metadata(path).map_err(|e| LoadError::io(path, &e))?;
     if meta.is_dir() {
@@ -156,6 +160,9 @@ pub fn load_level(path: &Path) -> Result<Level, LoadError> {
     }
     if path.file_name().is_some_and(|n| n.eq_ignore_ascii_case("level.toml")) {
         return load_level_folder(path.parent().unwrap_or(Path::new(".")));
+    }
+    if is_zip(path) {
+        return load_level_in(path, &mut Sources::zipped(path)?);
     }
     let mut sources = Sources::new(None);
     let scene = load_scene_with(path, &mut sources)?;
@@ -171,6 +178,7 @@ pub fn load_level(path: &Path) -> Result<Level, LoadError> {
         game: toml::Table::new(),
         content_hash: sources.hash(),
         warnings: sources.take_warnings(),
+        files: sources.files().to_vec(),
     })
 }
 
@@ -189,9 +197,14 @@ pub(crate) fn load_scene_with(path: &Path, sources: &mut Sources) -> Result<Scen
 }
 
 fn load_level_folder(dir: &Path) -> Result<Level, LoadError> {
-    let toml_path = dir.join("level.toml");
     let root = dir.canonicalize().map_err(|e| LoadError::io(dir, &e))?;
-    let mut sources = Sources::new(Some(root));
+    load_level_in(dir, &mut Sources::new(Some(root)))
+}
+
+/// Loads the level whose folder (or archive standing for it) is `dir`, reading through
+/// `sources`, which keep every file inside it.
+fn load_level_in(dir: &Path, sources: &mut Sources) -> Result<Level, LoadError> {
+    let toml_path = dir.join("level.toml");
     let bytes = sources.read(&toml_path)?;
     // Cheap checks first: a typo in level.toml fails before a large scene is loaded.
     let mut parsed = parse_level_toml(&bytes, &toml_path)?;
@@ -199,8 +212,8 @@ fn load_level_folder(dir: &Path) -> Result<Level, LoadError> {
         sources.warn(&toml_path, at, message);
     }
     let scene_path = sources.resolve(&toml_path, dir, &parsed.scene)?;
-    let mut scene = load_scene_with(&scene_path, &mut sources)?;
-    let headlamp = parsed.headlamp(&toml_path, dir, &mut sources)?;
+    let mut scene = load_scene_with(&scene_path, sources)?;
+    let headlamp = parsed.headlamp(&toml_path, dir, sources)?;
     scene.lights.extend(parsed.lights);
     Ok(Level {
         name: parsed.name,
@@ -214,5 +227,6 @@ fn load_level_folder(dir: &Path) -> Result<Level, LoadError> {
         game: parsed.game,
         content_hash: sources.hash(),
         warnings: sources.take_warnings(),
+        files: sources.files().to_vec(),
     })
 }

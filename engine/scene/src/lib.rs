@@ -23,6 +23,7 @@ mod obj_loader;
 mod sources;
 mod toml_place;
 mod types;
+mod zip_level;
 
 pub use error::{LoadError, LoadErrorKind, LoadWarning, TextPos};
 pub use gltf_loader::load_gltf;

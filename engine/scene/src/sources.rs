@@ -8,6 +8,7 @@ use std::path::{Component, Path, PathBuf};
 
 use crate::error::{LoadError, LoadErrorKind, LoadWarning, TextPos};
 use crate::limits::MAX_FILE_BYTES;
+use crate::zip_level::ZipLevel;
 
 /// 64-bit FNV-1a: tiny, dependency-free and stable across platforms and Rust versions, which
 /// is what a hash stored in replay files needs (std's `DefaultHasher` promises none of that).
@@ -33,10 +34,12 @@ impl Fnv1a {
 }
 
 /// The files a load has read, in order, and their running hash.
-#[derive(Debug, Default)]
+#[derive(Default)]
 pub(crate) struct Sources {
     /// Canonical level folder; when set, every referenced path must resolve inside it.
     root: Option<PathBuf>,
+    /// A zipped level: every file is read from the archive instead of the disk.
+    zip: Option<ZipLevel>,
     files: Vec<PathBuf>,
     hash: Fnv1a,
     warnings: Vec<LoadWarning>,
@@ -47,10 +50,23 @@ impl Sources {
         Self { root, ..Self::default() }
     }
 
+    /// Sources that read a zipped level from the archive at `path`, read and hashed whole
+    /// here (as the level's only file: its members are its content).
+    pub fn zipped(path: &Path) -> Result<Self, LoadError> {
+        let mut sources = Self::default();
+        let bytes = sources.read(path)?;
+        sources.zip = Some(ZipLevel::open(path, bytes)?);
+        Ok(sources)
+    }
+
     /// Reads a whole file and adds it to the hash. Each file is hashed as its length (u64 LE)
     /// then its bytes, so that moving bytes from one file to the next changes the hash; a file
     /// read twice is hashed once.
     pub fn read(&mut self, path: &Path) -> Result<Vec<u8>, LoadError> {
+        // A zipped level's content is the archive, hashed whole when it was opened.
+        if let Some(zip) = &mut self.zip {
+            return zip.read(path);
+        }
         let meta = std::fs::metadata(path).map_err(|e| LoadError::io(path, &e))?;
         if meta.is_dir() {
             return Err(LoadError::new(path, LoadErrorKind::Io("is a directory, expected a file".into())));
@@ -73,6 +89,9 @@ impl Sources {
     pub fn resolve(&self, referrer: &Path, base: &Path, written: &str) -> Result<PathBuf, LoadError> {
         if written.trim().is_empty() {
             return Err(LoadError::new(referrer, LoadErrorKind::Io("empty file path".into())));
+        }
+        if let Some(zip) = &self.zip {
+            return zip.resolve(referrer, base, written);
         }
         let rel = Path::new(written);
         let Some(root) = &self.root else {
@@ -108,5 +127,11 @@ impl Sources {
 
     pub fn take_warnings(&mut self) -> Vec<LoadWarning> {
         std::mem::take(&mut self.warnings)
+    }
+
+    /// Every file the load read, in order (for a zipped level, the archive): what to watch
+    /// for edits.
+    pub fn files(&self) -> &[PathBuf] {
+        &self.files
     }
 }
