@@ -16,5 +16,5 @@ pub use bindings::{Action, Binding, KeyBindings};
 pub use config::{config_path, Config, ConfigError};
 pub use gun::GunPose;
 pub use hud::HudInfo;
-pub use menu::{MenuAction, Menus, Screen};
+pub use menu::{LevelCard, MenuAction, Menus, Screen, THUMBNAIL};
 pub use overlay::{FrameRate, OverlayInfo};

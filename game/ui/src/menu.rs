@@ -3,6 +3,7 @@
 //! [`MenuAction`] it returns; it switches screens itself with [`Menus::pause`],
 //! [`Menus::game_over`] and [`Menus::playing`].
 
+mod levels_screen;
 mod settings_screen;
 #[cfg(test)]
 mod tests;
@@ -11,6 +12,8 @@ use engine::egui::{self, Color32, RichText};
 use engine::input::{Input, KeyCode};
 
 use crate::config::Config;
+pub use levels_screen::{LevelCard, THUMBNAIL};
+use levels_screen::LevelsScreen;
 use settings_screen::SettingsScreen;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -20,6 +23,8 @@ pub enum Screen {
     Playing,
     Paused,
     Settings,
+    /// The level menu, from the main menu.
+    Levels,
     GameOver {
         won: bool,
     },
@@ -30,6 +35,8 @@ pub enum Screen {
 pub enum MenuAction {
     /// Start a game from the main menu.
     Play,
+    /// Start the level of this card (see [`Menus::set_levels`]) from the level menu.
+    PlayLevel(usize),
     /// Leave the pause menu.
     Resume,
     /// Start the level again.
@@ -46,6 +53,7 @@ pub struct Menus {
     /// Where Settings' Back returns: the main menu or the pause menu.
     settings_from: Screen,
     settings: SettingsScreen,
+    levels: LevelsScreen,
     /// Shown on every menu until dismissed, e.g. the config file's problem.
     warning: Option<String>,
     /// Set when the game switches screens: the Esc that made it pause must not also resume
@@ -72,6 +80,7 @@ impl Menus {
             screen: Screen::MainMenu,
             settings_from: Screen::MainMenu,
             settings: SettingsScreen::default(),
+            levels: LevelsScreen::default(),
             warning: None,
             ignore_esc: false,
         }
@@ -87,7 +96,7 @@ impl Menus {
     /// main menu, nor in Settings opened from it.
     pub fn in_game(&self) -> bool {
         match self.screen {
-            Screen::MainMenu => false,
+            Screen::MainMenu | Screen::Levels => false,
             Screen::Settings => self.settings_from != Screen::MainMenu,
             _ => true,
         }
@@ -114,6 +123,27 @@ impl Menus {
     /// Closes any menu.
     pub fn playing(&mut self) {
         self.screen = Screen::Playing;
+    }
+
+    /// The levels the level menu lists, in order ([`MenuAction::PlayLevel`] names them by
+    /// index); until this is called it says it is still looking.
+    pub fn set_levels(&mut self, cards: Vec<LevelCard>) {
+        self.levels.set_cards(cards);
+    }
+
+    pub fn levels(&self) -> Option<&[LevelCard]> {
+        self.levels.cards()
+    }
+
+    /// The level whose thumbnail the game should render next: only while the level menu is
+    /// open (thumbnails are made on first sight).
+    pub fn wants_thumbnail(&self) -> Option<usize> {
+        (self.screen == Screen::Levels).then(|| self.levels.wants_thumbnail()).flatten()
+    }
+
+    /// A level's thumbnail, RGBA8 rows from the top.
+    pub fn set_thumbnail(&mut self, index: usize, width: usize, height: usize, rgba: &[u8]) {
+        self.levels.set_thumbnail(index, width, height, rgba);
     }
 
     /// Shows `text` (e.g. from `Config::load_or_default`) on the menus until dismissed.
@@ -145,10 +175,20 @@ impl Menus {
                 }
                 (*config != before).then_some(MenuAction::ConfigChanged)
             }
+            Screen::Levels => match self.levels.show(ctx, esc) {
+                Some(Some(index)) => Some(MenuAction::PlayLevel(index)),
+                Some(None) => {
+                    self.screen = Screen::MainMenu;
+                    None
+                }
+                None => None,
+            },
             Screen::GameOver { won } => self.game_over_menu(ctx, won),
         };
         match action {
-            Some(MenuAction::Play | MenuAction::Resume | MenuAction::Restart) => self.screen = Screen::Playing,
+            Some(MenuAction::Play | MenuAction::Resume | MenuAction::Restart | MenuAction::PlayLevel(_)) => {
+                self.screen = Screen::Playing
+            }
             Some(MenuAction::MainMenu) => self.screen = Screen::MainMenu,
             _ => {}
         }
@@ -168,6 +208,9 @@ impl Menus {
             ui.add_space(24.0);
             if big_button(ui, "Play") {
                 action = Some(MenuAction::Play);
+            }
+            if big_button(ui, "Levels") {
+                self.screen = Screen::Levels;
             }
             if big_button(ui, "Settings") {
                 self.open_settings();

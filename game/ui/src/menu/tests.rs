@@ -379,3 +379,45 @@ fn the_settings_panel_does_not_move_once_shown() {
     assert!(places.len() >= 12, "shown from the first frames: {}", places.len());
     assert!(places.windows(2).all(|w| w[0] == w[1]), "{places:?}");
 }
+
+#[test]
+fn the_level_menu_lists_levels_and_plays_the_one_clicked() {
+    use super::LevelCard;
+    let mut h = Harness::new();
+    assert_eq!(h.click("Levels"), None);
+    assert_eq!(h.menus.screen(), Screen::Levels);
+    assert!(!h.menus.in_game());
+    assert!(h.shows("Looking for levels…"), "{:?}", h.shown);
+    assert_eq!(h.menus.wants_thumbnail(), None, "nothing listed yet");
+
+    let card = |name: &str, error: Option<&str>| LevelCard {
+        name: name.into(),
+        description: format!("{name}, described"),
+        location: "shipped".into(),
+        error: error.map(str::to_owned),
+    };
+    h.menus.set_levels(vec![card("Broken", Some("scene.gltf: error: node 'p': unknown pickup")), card("Gallery", None)]);
+    h.settle();
+    for text in ["Gallery", "Gallery, described", "Broken", "scene.gltf: error: node 'p': unknown pickup", "Play Gallery"] {
+        assert!(h.shows(text), "'{text}' not shown: {:?}", h.shown);
+    }
+    assert!(!h.shows("Play Broken"), "a level that fails check cannot be started");
+    assert_eq!(h.menus.wants_thumbnail(), Some(1), "thumbnails for playable levels only");
+    h.menus.set_thumbnail(1, 2, 1, &[255, 0, 0, 255, 0, 255, 0, 255]);
+    assert_eq!(h.menus.wants_thumbnail(), None);
+
+    assert_eq!(h.click("Play Gallery"), Some(MenuAction::PlayLevel(1)));
+    assert_eq!(h.menus.screen(), Screen::Playing);
+    assert_eq!(h.menus.wants_thumbnail(), None, "only while the level menu is open");
+}
+
+#[test]
+fn back_and_esc_leave_the_level_menu() {
+    let mut h = Harness::new();
+    h.click("Levels");
+    assert_eq!(h.click("Back"), None);
+    assert_eq!(h.menus.screen(), Screen::MainMenu);
+    h.click("Levels");
+    assert_eq!(h.pass_with(Vec::new(), &key(KeyCode::Escape)), None);
+    assert_eq!(h.menus.screen(), Screen::MainMenu);
+}
