@@ -45,9 +45,12 @@ pub struct CheckArgs {
 
 #[derive(clap::Args, Debug, Default)]
 pub struct PlayArgs {
-    /// A level folder or a bare .gltf/.glb/.obj file [default: the shipped level].
+    /// A level folder, a .zip of one, or a bare .gltf/.glb/.obj file [default: the shipped level].
     #[arg(long)]
     pub level: Option<PathBuf>,
+    /// Also list the levels in this folder in the level menu (repeatable).
+    #[arg(long = "levels-dir", value_name = "DIR")]
+    pub levels_dirs: Vec<PathBuf>,
 }
 
 #[derive(clap::Args, Debug)]

@@ -8,6 +8,8 @@ pub mod cli;
 pub mod command_sampler;
 pub mod game_events;
 pub mod golden;
+pub mod level_list;
+pub mod level_watch;
 pub mod play;
 pub mod recording;
 pub mod render_cmd;
@@ -16,6 +18,7 @@ pub mod replay_goldens;
 pub mod script;
 pub mod script_trace;
 pub mod sim;
+pub mod thumbnail;
 pub mod view;
 
 use std::path::PathBuf;

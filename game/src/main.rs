@@ -23,7 +23,9 @@ fn main() -> ExitCode {
     };
     let result = match cli.command.unwrap_or(Command::Play(PlayArgs::default())) {
         Command::Check(args) => return game::check::run(&args),
-        Command::Play(args) => game::play::run(&args.level.unwrap_or_else(game::default_level)),
+        Command::Play(args) => {
+            game::play::run(&args.level.clone().unwrap_or_else(game::default_level), &args.levels_dirs)
+        }
         Command::Render(args) => game::render_cmd::run(&args),
         Command::Bench(args) => game::bench::run(&args),
         Command::Record(args) => game::replay_cmd::record(&args),

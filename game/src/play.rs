@@ -19,6 +19,8 @@ use plugin_gi::GiHandle;
 
 use crate::command_sampler::CommandSampler;
 use crate::game_events::Messages;
+use crate::level_list::ListedLevel;
+use crate::level_watch::FileWatch;
 use crate::recording::{Divergence, LoadedReplay, Recorder};
 use crate::sim::{lamp, player, weapon, Outcome, Simulation, WorldState};
 use crate::view::WorldView;
@@ -32,6 +34,8 @@ const GAME_OVER_DELAY: f32 = 1.5;
 const CONTROLS_HINT_TICKS: u32 = 480;
 /// The F3 overlay reads GPU pass times this often (reading waits for the GPU), frames.
 const TIMING_EVERY: u32 = 30;
+/// "Reloaded" shows this long after a live reload, s.
+const RELOADED_NOTICE: f32 = 2.0;
 
 /// The highest render scale a CPU device starts with; dynamic resolution (holding
 /// [`CPU_TARGET_FPS`]) lowers it as far as the machine needs, down to 25 %. Frame costs on
@@ -67,8 +71,10 @@ fn cpu_note(adapter: &str, config: &Config) -> String {
     }
 }
 
-/// `headlamp play`: the main menu first, the config file loaded (and saved on change).
-pub fn run(level_path: &Path) -> anyhow::Result<()> {
+/// `headlamp play`: the main menu first, the config file loaded (and saved on change), the
+/// level's files watched for edits, and the level menu filled from the shipped levels, the
+/// user's levels folder and `levels_dirs`.
+pub fn run(level_path: &Path, levels_dirs: &[PathBuf]) -> anyhow::Result<()> {
     let level = engine::scene::load_level(level_path)?;
     let world = crate::sim::level_world(&level)?;
     let (config, config_path, warning) = user_config();
@@ -78,6 +84,12 @@ pub fn run(level_path: &Path) -> anyhow::Result<()> {
     app.first_run = config_path.as_ref().is_some_and(|p| !p.exists());
     app.config_path = config_path;
     app.menus = Menus::new();
+    app.watch_level(level_path);
+    // Loading and checking every level takes a moment: the menu says so meanwhile.
+    let dirs = crate::level_list::level_dirs(levels_dirs);
+    let (found, listed) = std::sync::mpsc::channel();
+    std::thread::spawn(move || found.send(crate::level_list::scan(&dirs)));
+    app.listing = Some(listed);
     if let Some(w) = warning {
         app.menus.show_warning(w);
     }
@@ -150,6 +162,19 @@ pub struct GameWindow {
     frames: u32,
     gi_panel_open: bool,
     quit: bool,
+    /// The level being played, for live reload (None while watching a replay).
+    level_path: Option<PathBuf>,
+    /// Its files, polled for edits.
+    watch: Option<FileWatch>,
+    /// A level loaded and waiting for the next render to swap in.
+    next_level: Option<level_switch::NextLevel>,
+    /// The last reload's failure, shown until a reload works.
+    reload_error: Option<String>,
+    /// When (`time`) the level was last swapped, for a brief notice.
+    reloaded_at: Option<f32>,
+    /// The level menu's levels, once the scan that finds them is done.
+    levels: Vec<ListedLevel>,
+    listing: Option<std::sync::mpsc::Receiver<Vec<ListedLevel>>>,
 }
 
 impl GameWindow {
@@ -187,7 +212,31 @@ impl GameWindow {
             frames: 0,
             gi_panel_open: false,
             quit: false,
+            level_path: None,
+            watch: None,
+            next_level: None,
+            reload_error: None,
+            reloaded_at: None,
+            levels: Vec::new(),
+            listing: None,
         }
+    }
+
+    /// Hands the level menu what the scan found, once it is done.
+    fn take_listing(&mut self) {
+        let Some(Ok(found)) = self.listing.as_ref().map(|rx| rx.try_recv()) else { return };
+        self.listing = None;
+        let cards = found
+            .iter()
+            .map(|l| game_ui::LevelCard {
+                name: l.name.clone(),
+                description: l.description.clone(),
+                location: l.location.clone(),
+                error: l.error.clone(),
+            })
+            .collect();
+        self.menus.set_levels(cards);
+        self.levels = found;
     }
 
     /// Runs the ticks this frame's time pays for.
@@ -287,6 +336,11 @@ impl GameWindow {
     fn menu_action(&mut self, action: MenuAction) {
         match action {
             MenuAction::Play | MenuAction::Resume => self.menus.playing(),
+            MenuAction::PlayLevel(i) => {
+                if let Some(listed) = self.levels.get(i).cloned() {
+                    self.play_listed(&listed);
+                }
+            }
             MenuAction::Restart => {
                 self.restart();
                 self.menus.playing();
@@ -410,6 +464,47 @@ impl GameWindow {
         }
     }
 
+    /// Renders (or fetches from the cache) the picture of level menu card `index`. A level
+    /// that cannot be pictured gets a dark one, so it is not tried every frame.
+    fn make_thumbnail(&mut self, gpu: &Gpu, index: usize) {
+        let Some(listed) = self.levels.get(index) else { return };
+        let cache = crate::level_list::thumbnail_cache_dir();
+        let img = crate::thumbnail::thumbnail(gpu, listed, &self.config.gi, cache.as_deref()).unwrap_or_else(|e| {
+            log::warn!("thumbnail of {}: {e:#}", listed.path.display());
+            image::RgbaImage::from_pixel(2, 1, image::Rgba([30, 30, 30, 255]))
+        });
+        self.menus.set_thumbnail(index, img.width() as usize, img.height() as usize, img.as_raw());
+    }
+
+    /// The banner of a failed reload (until one works), or a moment's notice of one that worked.
+    fn reload_notice(&self, ctx: &egui::Context) {
+        let (text, fill) = match (&self.reload_error, self.reloaded_at) {
+            (Some(e), _) => (
+                format!(
+                    "Reload failed — {e}\nThe last good level keeps running: fix the file and save it, or press F5."
+                ),
+                egui::Color32::from_rgba_unmultiplied(110, 25, 20, 235),
+            ),
+            (None, Some(t)) if self.time - t < RELOADED_NOTICE => {
+                (format!("Reloaded {}", self.level.name), egui::Color32::from_rgba_unmultiplied(20, 70, 30, 220))
+            }
+            _ => return,
+        };
+        egui::Area::new(egui::Id::unique("reload notice"))
+            .order(egui::Order::Foreground)
+            .anchor(egui::Align2::CENTER_TOP, egui::vec2(0.0, 60.0))
+            .interactable(false)
+            .show(ctx, |ui| {
+                egui::Frame::NONE.fill(fill).corner_radius(6.0).inner_margin(egui::Margin::symmetric(12, 8)).show(
+                    ui,
+                    |ui| {
+                        ui.set_max_width(ctx.content_rect().width() * 0.8);
+                        ui.label(egui::RichText::new(text).color(egui::Color32::from_gray(240)));
+                    },
+                );
+            });
+    }
+
     fn corner_label(ctx: &egui::Context, id: &str, offset: egui::Vec2, text: String) {
         egui::Area::new(egui::Id::unique(id)).anchor(egui::Align2::RIGHT_TOP, offset).interactable(false).show(
             ctx,
@@ -465,6 +560,8 @@ impl WindowApp for GameWindow {
         if input.pressed(KeyCode::F1) {
             self.gi_panel_open = !self.gi_panel_open;
         }
+        self.take_listing();
+        self.poll_reload(dt, input.pressed(KeyCode::F5));
         if self.menus.is_open() {
             self.ticks_this_frame = 0;
             return; // paused: no time passes in the world
@@ -508,6 +605,7 @@ impl WindowApp for GameWindow {
         if self.menus.in_game() {
             hud::show(ctx, &self.hud());
         }
+        self.reload_notice(ctx);
         let status = self.status();
         if !status.is_empty() {
             Self::corner_label(ctx, "headlamp status", egui::vec2(-8.0, 8.0), status);
@@ -534,6 +632,14 @@ impl WindowApp for GameWindow {
         target: &engine::wgpu::Texture,
         view: &engine::wgpu::TextureView,
     ) -> anyhow::Result<()> {
+        if let Some(next) = self.next_level.take() {
+            if let Err(e) = self.switch_level(gpu, next) {
+                self.reload_error = Some(format!("{e:#}"));
+            }
+        }
+        if let Some(i) = self.menus.wants_thumbnail() {
+            self.make_thumbnail(gpu, i);
+        }
         let renderer = self.renderer.as_mut().expect("init runs before render");
         renderer.render(gpu, &self.view.view, target, view)?;
         self.frames += 1;
@@ -553,5 +659,6 @@ impl WindowApp for GameWindow {
     }
 }
 
+mod level_switch;
 #[cfg(test)]
 mod tests;

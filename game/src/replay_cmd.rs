@@ -33,6 +33,7 @@ pub fn record(args: &RecordArgs) -> anyhow::Result<()> {
     // is (settings changed while recording last for this session only).
     let config = game_ui::Config { gi, ..crate::play::user_config().0 };
     let mut app = GameWindow::new(level, sim, TickSource::live(&config, Some(recorder)), config);
+    app.watch_level(&level_path);
     let played = engine::window::run("Headlamp — recording", &mut app);
     if let TickSource::Live { recorder: Some(r), .. } = &app.source {
         r.save()?;

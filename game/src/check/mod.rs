@@ -11,7 +11,7 @@ mod gameplay;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use scene::TextPos;
+use scene::{Level, TextPos};
 use serde::Serialize;
 
 use crate::cli::CheckArgs;
@@ -59,14 +59,23 @@ impl Diagnostic {
 /// Everything `check` finds wrong with the level at `path`, errors and warnings, in the order
 /// the game would meet them. No errors: the game loads and starts it.
 pub fn check_level(path: &Path) -> Vec<Diagnostic> {
-    let level = match scene::load_level(path) {
-        Ok(level) => level,
-        Err(e) => return vec![Diagnostic::error(&e.path, e.at, e.kind.to_string())],
-    };
+    match scene::load_level(path) {
+        Ok(level) => check_loaded(&level),
+        Err(e) => vec![load_error(&e)],
+    }
+}
+
+/// [`check_level`] of a level already loaded.
+pub fn check_loaded(level: &Level) -> Vec<Diagnostic> {
     let mut found: Vec<Diagnostic> =
         level.warnings.iter().map(|w| Diagnostic::warning(&w.path, w.at, w.message.clone())).collect();
-    found.extend(gameplay::check(&level));
+    found.extend(gameplay::check(level));
     found
+}
+
+/// A load's error as a finding.
+pub fn load_error(e: &scene::LoadError) -> Diagnostic {
+    Diagnostic::error(&e.path, e.at, e.kind.to_string())
 }
 
 /// Runs `headlamp check`: prints the findings and exits 1 when there is an error.

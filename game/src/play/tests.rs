@@ -3,6 +3,7 @@
 use super::*;
 use game_ui::egui_harness::{click, find, input, texts};
 use game_ui::Screen;
+use glam::Vec3;
 use plugin_gi::GiSettings;
 
 fn app() -> GameWindow {
@@ -201,4 +202,107 @@ fn the_cpu_note_says_whether_the_cpu_settings_are_in_use() {
     assert!(note.contains("heavier than its defaults"), "{note}");
     config.gi.enabled = false;
     assert!(cpu_note("llvmpipe", &config).contains("uses the CPU settings"));
+}
+
+/// A copy of the Cellar, to edit: `cellar` in a folder of its own.
+fn cellar_copy(tag: &str) -> PathBuf {
+    let parent = std::env::temp_dir().join(format!("headlamp-live-reload-{}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&parent);
+    let dir = parent.join("cellar");
+    std::fs::create_dir_all(&dir).unwrap();
+    for entry in std::fs::read_dir(crate::default_level()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml" || e == "gltf" || e == "bin") {
+            std::fs::copy(&path, dir.join(path.file_name().unwrap())).unwrap();
+        }
+    }
+    dir
+}
+
+/// Frames of `seconds` of time with no input: enough polls for a saved file to be read.
+fn idle(app: &mut GameWindow, gpu: &Gpu, target: &engine::headless::HeadlessTarget, seconds: f32) {
+    let dt = 0.1;
+    for _ in 0..(seconds / dt).ceil() as usize {
+        app.update(&Input::default(), dt);
+        app.render(gpu, &target.texture, &target.view).unwrap();
+    }
+}
+
+/// Saving level.toml reloads the level within a second, keeping where the player stands and
+/// looks; a bad edit shows its error (file and line) and the last good level keeps running;
+/// F5 reloads by hand.
+#[test]
+fn a_saved_level_reloads_live_and_a_bad_edit_keeps_the_last_good_level() {
+    let dir = cellar_copy("edit");
+    let level = engine::scene::load_level(&dir).unwrap();
+    let sim = Simulation::new(&level, crate::sim::level_world(&level).unwrap(), 60, 1);
+    let config = Config { gi: GiSettings { enabled: false, ..GiSettings::default() }, ..Config::default() };
+    let mut app = GameWindow::new(level, sim, TickSource::live(&config, None), config);
+    app.watch_level(&dir);
+    let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
+    let target = engine::headless::HeadlessTarget::new(&gpu, 64, 36, engine::headless::ImageKind::Display);
+    app.init(&gpu, target.texture.format()).unwrap();
+    // The player has walked off the spawn and turned.
+    let (feet, yaw, pitch) = (app.sim.state.player.body.position + Vec3::new(0.0, 0.0, -1.5), 9000, -500);
+    app.sim = Simulation::at(feet, yaw, pitch, app.sim.world(), 60, 1);
+    idle(&mut app, &gpu, &target, 0.6);
+    assert_eq!(app.level.headlamp.power, 40.0);
+
+    let toml = dir.join("level.toml");
+    let text = std::fs::read_to_string(&toml).unwrap();
+    // Another length as well as another time: file systems with coarse clocks see it too.
+    std::fs::write(&toml, text.replace("power = 40.0", "power = 25.00")).unwrap();
+    idle(&mut app, &gpu, &target, 1.0);
+    assert_eq!(app.level.headlamp.power, 25.0, "reloaded within a second");
+    let p = &app.sim.state.player;
+    assert!(p.body.position.distance(feet) < 0.05 && (p.yaw, p.pitch) == (yaw, pitch), "kept the player: {p:?}");
+    assert!(app.reload_error.is_none());
+
+    // A typo: the error names the file and line, the level as it was keeps running.
+    std::fs::write(&toml, text.replace("power = 40.0", "powr = 10.0")).unwrap();
+    idle(&mut app, &gpu, &target, 1.0);
+    let error = app.reload_error.clone().expect("the bad edit is reported");
+    assert!(error.contains("level.toml:") && error.contains("unknown field `powr`"), "{error}");
+    assert_eq!(app.level.headlamp.power, 25.0, "the last good level keeps running");
+    let ctx = egui::Context::default();
+    let shown = texts(&settled_ui(&mut app, &ctx));
+    assert!(
+        shown.iter().any(|(t, _)| t.starts_with("Reload failed") && t.contains("unknown field `powr`")),
+        "{shown:?}"
+    );
+
+    // Fixed, and F5: reloaded, banner gone.
+    std::fs::write(&toml, text.replace("power = 40.0", "power = 30.000")).unwrap();
+    app.update(&press(KeyCode::F5), 0.01);
+    app.render(&gpu, &target.texture, &target.view).unwrap();
+    assert_eq!((app.level.headlamp.power, app.reload_error.is_none()), (30.0, true));
+    std::fs::remove_dir_all(dir.parent().unwrap()).unwrap();
+}
+
+/// A level picked from the level menu replaces the one running, from its spawn, and its files
+/// are the ones watched from then on.
+#[test]
+fn a_level_picked_from_the_menu_starts_at_its_spawn_and_is_watched() {
+    let dir = cellar_copy("pick");
+    let toml = dir.join("level.toml");
+    let text = std::fs::read_to_string(&toml).unwrap();
+    std::fs::write(&toml, text.replace("name = \"The Cellar\"", "name = \"Another Cellar\"")).unwrap();
+    let mut app = app();
+    app.config.gi.enabled = false;
+    let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
+    let target = engine::headless::HeadlessTarget::new(&gpu, 64, 36, engine::headless::ImageKind::Display);
+    app.init(&gpu, target.texture.format()).unwrap();
+    idle(&mut app, &gpu, &target, 0.5);
+    assert!(app.sim.state.tick > 0);
+    let listed = crate::level_list::scan(&[(dir.parent().unwrap().to_path_buf(), "tmp".into())])
+        .into_iter()
+        .find(|l| l.path == dir)
+        .expect("the copy is found");
+    app.levels = vec![listed];
+    app.menu_action(MenuAction::PlayLevel(0));
+    app.render(&gpu, &target.texture, &target.view).unwrap();
+    assert_eq!((app.level.name.as_str(), app.sim.state.tick), ("Another Cellar", 0));
+    assert_eq!(app.level_path.as_deref(), Some(dir.as_path()));
+    assert!(app.watch.as_ref().unwrap().files().contains(&toml));
+    std::fs::remove_dir_all(dir.parent().unwrap()).unwrap();
 }

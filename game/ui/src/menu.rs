@@ -12,8 +12,8 @@ use engine::egui::{self, Color32, RichText};
 use engine::input::{Input, KeyCode};
 
 use crate::config::Config;
-pub use levels_screen::{LevelCard, THUMBNAIL};
 use levels_screen::LevelsScreen;
+pub use levels_screen::{LevelCard, THUMBNAIL};
 use settings_screen::SettingsScreen;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -118,6 +118,11 @@ impl Menus {
     pub fn game_over(&mut self, won: bool) {
         self.screen = Screen::GameOver { won };
         self.ignore_esc = true;
+    }
+
+    /// Back to the main menu (e.g. a level picked from the level menu failed to load).
+    pub fn to_main_menu(&mut self) {
+        self.screen = Screen::MainMenu;
     }
 
     /// Closes any menu.

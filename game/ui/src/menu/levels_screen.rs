@@ -101,7 +101,8 @@ impl LevelsScreen {
 fn card_row(ui: &mut egui::Ui, card: &LevelCard, thumbnail: &mut Thumbnail, index: usize) -> bool {
     if let Thumbnail::Pending(image) = thumbnail {
         let image = std::mem::take(image);
-        *thumbnail = Thumbnail::Shown(ui.ctx().load_texture(format!("level thumbnail {index}"), image, Default::default()));
+        *thumbnail =
+            Thumbnail::Shown(ui.ctx().load_texture(format!("level thumbnail {index}"), image, Default::default()));
     }
     let mut play = false;
     ui.horizontal(|ui| {
@@ -112,8 +113,14 @@ fn card_row(ui: &mut egui::Ui, card: &LevelCard, thumbnail: &mut Thumbnail, inde
             _ => {
                 let (rect, _) = ui.allocate_exact_size(THUMBNAIL, egui::Sense::hover());
                 ui.painter().rect_filled(rect, 4.0, Color32::from_gray(35));
-                let text = if card.error.is_some() { "✖" } else { "…" };
-                ui.painter().text(rect.center(), egui::Align2::CENTER_CENTER, text, egui::FontId::proportional(20.0), DIM);
+                let text = if card.error.is_some() { "—" } else { "…" };
+                ui.painter().text(
+                    rect.center(),
+                    egui::Align2::CENTER_CENTER,
+                    text,
+                    egui::FontId::proportional(20.0),
+                    DIM,
+                );
             }
         }
         ui.vertical(|ui| {

@@ -396,9 +396,12 @@ fn the_level_menu_lists_levels_and_plays_the_one_clicked() {
         location: "shipped".into(),
         error: error.map(str::to_owned),
     };
-    h.menus.set_levels(vec![card("Broken", Some("scene.gltf: error: node 'p': unknown pickup")), card("Gallery", None)]);
+    h.menus
+        .set_levels(vec![card("Broken", Some("scene.gltf: error: node 'p': unknown pickup")), card("Gallery", None)]);
     h.settle();
-    for text in ["Gallery", "Gallery, described", "Broken", "scene.gltf: error: node 'p': unknown pickup", "Play Gallery"] {
+    for text in
+        ["Gallery", "Gallery, described", "Broken", "scene.gltf: error: node 'p': unknown pickup", "Play Gallery"]
+    {
         assert!(h.shows(text), "'{text}' not shown: {:?}", h.shown);
     }
     assert!(!h.shows("Play Broken"), "a level that fails check cannot be started");
