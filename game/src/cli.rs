@@ -36,11 +36,15 @@ pub enum Command {
 
 #[derive(clap::Args, Debug)]
 pub struct CheckArgs {
-    /// A level folder, its level.toml, or a bare .gltf/.glb/.obj file.
-    pub level: PathBuf,
+    /// A level folder, its level.toml, a .zip of a level folder, or a bare .gltf/.glb/.obj file.
+    #[arg(required_unless_present = "reference")]
+    pub level: Option<PathBuf>,
     /// Print the findings as one JSON document (for editors and tools).
     #[arg(long)]
     pub json: bool,
+    /// Print the level.toml reference (every key, its values and default) as Markdown.
+    #[arg(long, conflicts_with_all = ["level", "json"])]
+    pub reference: bool,
 }
 
 #[derive(clap::Args, Debug, Default)]

@@ -147,3 +147,25 @@ fn what_check_refuses_the_game_refuses_too() {
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("node 'p': unknown pickup \"gold\""), "{err}");
 }
+
+#[test]
+fn modding_md_carries_the_level_toml_reference_as_check_prints_it() {
+    let out = headlamp(&["check", "--reference"]);
+    assert_eq!(out.status.code(), Some(0));
+    let reference = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        reference.contains("| [headlamp] `profile` |") && reference.contains("| [game] `objective` |"),
+        "{reference}"
+    );
+    let modding = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../MODDING.md")).unwrap();
+    let block = modding
+        .split_once("<!-- level.toml reference: begin")
+        .and_then(|(_, rest)| rest.split_once("-->\n"))
+        .and_then(|(_, rest)| rest.split_once("<!-- level.toml reference: end -->"))
+        .map(|(block, _)| block)
+        .expect("MODDING.md has the reference markers");
+    assert_eq!(
+        block, reference,
+        "MODDING.md's reference is stale: paste `headlamp check --reference` between its markers"
+    );
+}

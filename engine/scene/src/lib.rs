@@ -17,6 +17,7 @@ mod gltf_unsupported;
 mod ies;
 mod image_loader;
 mod level;
+mod level_keys;
 mod level_toml;
 pub mod limits;
 mod obj_loader;
@@ -33,6 +34,7 @@ pub use level::{
     load_level, load_scene_file, DistributionImage, HeadlampProfile, IntensityDistribution, Level, Spawn,
     DEFAULT_EYE_HEIGHT,
 };
+pub use level_keys::{KeyDoc, LEVEL_KEYS, LEVEL_TABLES};
 pub use obj_loader::load_obj;
 pub use sources::Fnv1a;
 pub use toml_place::key_place;

@@ -80,13 +80,17 @@ pub fn load_error(e: &scene::LoadError) -> Diagnostic {
 
 /// Runs `headlamp check`: prints the findings and exits 1 when there is an error.
 pub fn run(args: &CheckArgs) -> ExitCode {
+    let Some(level) = &args.level else {
+        print!("{}", reference());
+        return ExitCode::SUCCESS;
+    };
     // The loader also logs its warnings for `play`; here they are the report itself.
     log::set_max_level(log::LevelFilter::Error);
-    let found = check_level(&args.level);
+    let found = check_level(level);
     let errors = found.iter().filter(|d| d.severity == Severity::Error).count();
     let warnings = found.len() - errors;
     if args.json {
-        println!("{}", to_json(&args.level, &found));
+        println!("{}", to_json(level, &found));
     } else {
         for d in &found {
             println!("{d}");
@@ -94,7 +98,7 @@ pub fn run(args: &CheckArgs) -> ExitCode {
         let verdict = if errors == 0 { "ok" } else { "not playable" };
         println!(
             "{}: {verdict} ({} error{}, {} warning{})",
-            args.level.display(),
+            level.display(),
             errors,
             plural(errors),
             warnings,
@@ -155,4 +159,21 @@ pub fn to_json(level: &Path, found: &[Diagnostic]) -> String {
             .collect(),
     };
     serde_json::to_string_pretty(&report).expect("a report of strings and numbers serialises")
+}
+
+/// The level.toml reference in Markdown, from the tables the loader and the game are held to
+/// (`scene::LEVEL_KEYS`, the game's `[game]` keys): what `headlamp check --reference` prints
+/// and MODDING.md carries.
+pub fn reference() -> String {
+    let mut out = String::from("| key | value | default | meaning |\n| --- | --- | --- | --- |\n");
+    let keys = scene::LEVEL_KEYS.iter().chain(crate::sim::level_entities::GAME_KEYS);
+    for k in keys {
+        let (table, name) = match k.key.split_once('.') {
+            Some((table, name)) if table.ends_with("[]") => (format!("[[{}]] ", table.trim_end_matches("[]")), name),
+            Some((table, name)) => (format!("[{table}] "), name),
+            None => (String::new(), k.key),
+        };
+        out.push_str(&format!("| {table}`{name}` | {} | {} | {} |\n", k.kind, k.default, k.meaning));
+    }
+    out
 }

@@ -271,6 +271,14 @@ fn a_saved_level_reloads_live_and_a_bad_edit_keeps_the_last_good_level() {
         "{shown:?}"
     );
 
+    // The reloader keeps to the level folder like every load: a scene outside it is refused.
+    std::fs::write(dir.parent().unwrap().join("outside.gltf"), "{}").unwrap();
+    std::fs::write(&toml, text.replace("scene = \"scene.gltf\"", "scene = \"../outside.gltf\"")).unwrap();
+    idle(&mut app, &gpu, &target, 1.0);
+    let error = app.reload_error.clone().expect("the escape is reported");
+    assert!(error.contains("level.toml: path '../outside.gltf' escapes the level folder"), "{error}");
+    assert_eq!(app.level.headlamp.power, 25.0);
+
     // Fixed, and F5: reloaded, banner gone.
     std::fs::write(&toml, text.replace("power = 40.0", "power = 30.000")).unwrap();
     app.update(&press(KeyCode::F5), 0.01);

@@ -91,6 +91,25 @@ pub struct Exit {
     pub yaw: f32,
 }
 
+/// The `[game]` keys, for the level.toml reference (`headlamp check --reference`) and the
+/// unknown-key message alike.
+pub const GAME_KEYS: &[scene::KeyDoc] = &[
+    scene::KeyDoc {
+        key: "game.battery_seconds",
+        kind: "seconds >= 1",
+        default: "150",
+        meaning: "a full lamp battery lasts this long lit",
+        example: "120.0",
+    },
+    scene::KeyDoc {
+        key: "game.objective",
+        kind: "text",
+        default: "from the markers (\"Find the exit\", \"Put down every crawler\", ...)",
+        meaning: "the HUD's objective line",
+        example: "\"Put down the four crawlers\"",
+    },
+];
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rules {
     pub battery_seconds: f32,
@@ -212,7 +231,10 @@ impl Rules {
                         .ok_or_else(|| at("must be a number of seconds ≥ 1"))?;
                 }
                 "objective" => rules.objective = value.as_str().ok_or_else(|| at("must be text"))?.to_owned(),
-                _ => return Err(at("unknown key (expected battery_seconds or objective)")),
+                _ => {
+                    let known: Vec<&str> = GAME_KEYS.iter().map(|k| k.key.trim_start_matches("game.")).collect();
+                    return Err(at(&format!("unknown key (expected one of {})", known.join(", "))));
+                }
             }
         }
         Ok(rules)
@@ -295,6 +317,15 @@ mod tests {
             let e = LevelEntities::read(&level(&markers, game)).unwrap_err().to_string();
             assert!(e.contains(needle), "{e}");
         }
+    }
+
+    #[test]
+    fn every_game_key_is_documented_and_reads_its_example() {
+        let table: String =
+            GAME_KEYS.iter().map(|k| format!("{} = {}\n", k.key.trim_start_matches("game."), k.example)).collect();
+        LevelEntities::read(&level(&[], &table)).unwrap_or_else(|e| panic!("{e}"));
+        let e = LevelEntities::read(&level(&[], "zzz = 1")).unwrap_err().to_string();
+        assert!(e.ends_with("(expected one of battery_seconds, objective)"), "{e}");
     }
 
     #[test]
