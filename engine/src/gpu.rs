@@ -1,6 +1,12 @@
 //! The GPU context: one instance/adapter/device/queue, shared by the window and headless paths.
 
 use std::fmt;
+use std::sync::{Arc, Mutex};
+
+/// wgpu's errors span lines (a source chain); ours are one.
+fn one_line(e: &impl fmt::Display) -> String {
+    e.to_string().split(['\n', '\r']).map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" ")
+}
 
 /// Installed by `.ci/run`; printed whenever no adapter is found so a test failure says what to do.
 pub const LAVAPIPE_HINT: &str = "install Mesa's software Vulkan driver (lavapipe): \
@@ -10,6 +16,8 @@ pub const LAVAPIPE_HINT: &str = "install Mesa's software Vulkan driver (lavapipe
 pub enum GpuError {
     NoAdapter(String),
     Device(String),
+    /// Work on the device failed (out of memory, a size past its limits, a validation error).
+    Failed(String),
 }
 
 impl fmt::Display for GpuError {
@@ -17,6 +25,7 @@ impl fmt::Display for GpuError {
         match self {
             GpuError::NoAdapter(why) => write!(f, "no GPU adapter found ({why}); {LAVAPIPE_HINT}"),
             GpuError::Device(why) => write!(f, "could not open the GPU device: {why}"),
+            GpuError::Failed(why) => write!(f, "the GPU failed {why}"),
         }
     }
 }
@@ -24,6 +33,9 @@ impl fmt::Display for GpuError {
 impl std::error::Error for GpuError {}
 
 pub struct Gpu {
+    /// GPU errors raised outside an error scope (see [`Gpu::checked`]), oldest first: wgpu's
+    /// default is to panic on them; here the frame loop turns them into an error instead.
+    uncaptured: Arc<Mutex<Vec<String>>>,
     pub instance: wgpu::Instance,
     pub adapter: wgpu::Adapter,
     pub device: wgpu::Device,
@@ -90,7 +102,41 @@ impl Gpu {
             trace: wgpu::Trace::Off,
         }))
         .map_err(|e| GpuError::Device(e.to_string()))?;
-        Ok(Gpu { instance, adapter, device, queue, timestamps: features.contains(timing) })
+        let uncaptured = Arc::new(Mutex::new(Vec::new()));
+        let sink = uncaptured.clone();
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            let message = one_line(&e);
+            log::error!("GPU: {message}");
+            if let Ok(mut errors) = sink.lock() {
+                errors.push(message);
+            }
+        }));
+        Ok(Gpu { uncaptured, instance, adapter, device, queue, timestamps: features.contains(timing) })
+    }
+
+    /// Runs `f` with the device's errors caught (out of memory, validation, internal): a GPU
+    /// error in it becomes an `Err` saying what was being done, never wgpu's panic.
+    pub fn checked<T>(&self, doing: &str, f: impl FnOnce() -> T) -> Result<T, GpuError> {
+        let scopes = [wgpu::ErrorFilter::OutOfMemory, wgpu::ErrorFilter::Validation, wgpu::ErrorFilter::Internal]
+            .map(|filter| self.device.push_error_scope(filter));
+        let value = f();
+        // Popped innermost first; running out of memory is reported before the invalid
+        // resources it leaves behind.
+        let mut caught: Vec<Option<wgpu::Error>> =
+            scopes.into_iter().rev().map(|s| pollster::block_on(s.pop())).collect();
+        caught.reverse();
+        match caught.into_iter().flatten().next() {
+            None => Ok(value),
+            Some(e) => Err(GpuError::Failed(format!("{doing}: {}", one_line(&e)))),
+        }
+    }
+
+    /// The first GPU error raised outside [`Gpu::checked`] since the last call, if any.
+    pub fn take_uncaptured(&self) -> Option<String> {
+        let mut errors = self.uncaptured.lock().ok()?;
+        let first = errors.first().cloned();
+        errors.clear();
+        first
     }
 
     pub fn adapter_name(&self) -> String {

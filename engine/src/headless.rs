@@ -2,7 +2,6 @@
 
 use crate::frame::ViewState;
 use crate::gpu::Gpu;
-use crate::graph::GraphError;
 use crate::renderer::Renderer;
 
 /// The two kinds of picture a view can be read back as.
@@ -50,9 +49,11 @@ impl HeadlessTarget {
         Self { texture, view, kind }
     }
 
-    /// Renders one frame into this target and reads it back.
-    pub fn render(&self, gpu: &Gpu, renderer: &mut Renderer, view: &ViewState) -> Result<RenderedImage, GraphError> {
-        renderer.render(gpu, view, &self.texture, &self.view)?;
+    /// Renders one frame into this target and reads it back. A GPU error on the way (a size
+    /// past the device's memory or limits) is an error naming the size, not a panic.
+    pub fn render(&self, gpu: &Gpu, renderer: &mut Renderer, view: &ViewState) -> anyhow::Result<RenderedImage> {
+        let (w, h) = (self.texture.width(), self.texture.height());
+        gpu.checked(&format!("rendering a {w}x{h} frame"), || renderer.render(gpu, view, &self.texture, &self.view))??;
         Ok(self.read_back(gpu))
     }
 

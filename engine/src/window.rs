@@ -217,6 +217,10 @@ impl<A: WindowApp> Runner<'_, A> {
         if suboptimal {
             state.surface.configure(&state.gpu.device, &state.config);
         }
+        // A GPU error is wgpu's panic by default; here it ends the loop as the app's errors do.
+        if let Some(e) = state.gpu.take_uncaptured() {
+            anyhow::bail!("the GPU failed drawing a frame: {e}");
+        }
         Ok(())
     }
 

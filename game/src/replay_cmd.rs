@@ -158,6 +158,10 @@ pub fn snapshot_name(tick: u32) -> String {
 /// Simulates a script's commands and writes them, with their hashes, as a replay; with
 /// `--trace`, printing the world after each line.
 pub fn script(args: &ScriptArgs) -> anyhow::Result<()> {
+    let same = |a: &Path, b: &Path| a.canonicalize().ok().is_some_and(|a| b.canonicalize().ok() == Some(a));
+    if same(&args.script, &args.out) {
+        bail!("--out {} is the script itself: the replay would overwrite it", args.out.display());
+    }
     let gi = crate::cli::gi_settings(&args.settings, args.gi).map_err(|e| anyhow!("--set {e}"))?;
     let (commands, steps) = crate::script::read_steps(&args.script).map_err(|e| anyhow!(e))?;
     let level = engine::scene::load_level(&args.level)?;

@@ -24,8 +24,9 @@ use std::path::Path;
 
 use crate::sim::command::{angle_units, buttons, TickCommand};
 
-/// More ticks than this in one script is a typo (it is over 46 hours at 60 Hz).
-pub const MAX_TICKS: u64 = 10_000_000;
+/// More ticks than this in one script is a typo: 5 hours at 60 Hz (the one table of limits
+/// is `scene::limits`).
+pub const MAX_TICKS: u64 = scene::limits::MAX_SCRIPT_TICKS;
 
 /// Parses a script into one command per tick; errors name the file and line.
 pub fn parse(text: &str, path: &Path) -> Result<Vec<TickCommand>, String> {
@@ -78,7 +79,8 @@ pub fn read(path: &Path) -> Result<Vec<TickCommand>, String> {
 
 /// [`read`], also saying where each line's step ends.
 pub fn read_steps(path: &Path) -> Result<(Vec<TickCommand>, Vec<StepEnd>), String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = scene::limits::read_text(path, scene::limits::MAX_TEXT_BYTES)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     parse_steps(&text, path)
 }
 

@@ -13,8 +13,8 @@ use crate::limits::MAX_TEXTURE_SIZE;
 use crate::sources::Sources;
 use crate::Texture;
 
-/// Most bytes the decoder may allocate: a 16384² RGBA8 image needs 1 GiB.
-const MAX_DECODE_ALLOC: u64 = 2 << 30;
+/// Most bytes the decoder may allocate: an 8192² RGBA image of 16-bit channels needs 512 MiB.
+const MAX_DECODE_ALLOC: u64 = 1 << 30;
 
 /// Loads a PNG, JPEG or EXR file as a texture. The texture is named after the file.
 pub fn load_texture(path: &Path) -> Result<Texture, LoadError> {
@@ -43,11 +43,12 @@ pub fn texture_from_image(name: impl Into<String>, image: DynamicImage) -> Textu
 /// Decodes `bytes` (named `path` in errors; `what` says which image inside that file, or "")
 /// into a texture called `name`.
 pub(crate) fn decode_texture(bytes: &[u8], path: &Path, what: &str, name: String) -> Result<Texture, LoadError> {
-    Ok(texture_from_image(name, decode_image(bytes, path, what)?))
+    Ok(texture_from_image(name, decode_image(bytes, path, what, MAX_TEXTURE_SIZE)?))
 }
 
-/// Decodes an image, guessing the format from its first bytes and then from the extension.
-pub(crate) fn decode_image(bytes: &[u8], path: &Path, what: &str) -> Result<DynamicImage, LoadError> {
+/// Decodes an image of at most `max_side` pixels across and down, guessing the format from its
+/// first bytes and then from the extension.
+pub(crate) fn decode_image(bytes: &[u8], path: &Path, what: &str, max_side: u32) -> Result<DynamicImage, LoadError> {
     let prefix = if what.is_empty() { String::new() } else { format!("{what}: ") };
     let err = |msg: String| LoadError::new(path, LoadErrorKind::Image(format!("{prefix}{msg}")));
 
@@ -61,23 +62,23 @@ pub(crate) fn decode_image(bytes: &[u8], path: &Path, what: &str) -> Result<Dyna
         return Err(err("unrecognised image format (supported: PNG, JPEG, EXR)".into()));
     }
     let mut limits = Limits::default();
-    limits.max_image_width = Some(MAX_TEXTURE_SIZE);
-    limits.max_image_height = Some(MAX_TEXTURE_SIZE);
+    limits.max_image_width = Some(max_side);
+    limits.max_image_height = Some(max_side);
     limits.max_alloc = Some(MAX_DECODE_ALLOC);
     reader.limits(limits);
 
     let image = reader.decode().map_err(|e| match e {
         ImageError::Limits(_) => LoadError::too_large(
             path,
-            format!("{prefix}image exceeds {MAX_TEXTURE_SIZE}x{MAX_TEXTURE_SIZE} pixels or {MAX_DECODE_ALLOC} bytes"),
+            format!("{prefix}image exceeds {max_side}x{max_side} pixels or {MAX_DECODE_ALLOC} bytes"),
         ),
         other => err(one_line(other)),
     })?;
     // Decoders that ignore limits are caught here, after the fact.
-    if image.width() > MAX_TEXTURE_SIZE || image.height() > MAX_TEXTURE_SIZE {
+    if image.width() > max_side || image.height() > max_side {
         return Err(LoadError::too_large(
             path,
-            format!("{prefix}image is {}x{} pixels (limit {MAX_TEXTURE_SIZE})", image.width(), image.height()),
+            format!("{prefix}image is {}x{} pixels (limit {max_side})", image.width(), image.height()),
         ));
     }
     if image.width() == 0 || image.height() == 0 {

@@ -15,6 +15,7 @@ use crate::error::{one_line, LoadError, LoadErrorKind, TextPos};
 use crate::ies::{ies_texture_size, read_ies};
 use crate::image_loader::decode_image;
 use crate::level::{DistributionImage, HeadlampProfile, IntensityDistribution, Spawn};
+use crate::limits::MAX_PROFILE_SIZE;
 use crate::sources::Sources;
 use crate::toml_place::{key_place, leading_key};
 use crate::{LightKind, PunctualLight};
@@ -321,7 +322,7 @@ fn check_colour(c: &[f32; 3], at: &str) -> Result<(), String> {
 /// Decodes a headlamp intensity texture. Integer formats are normalised (PNG 8-bit: v/255),
 /// not sRGB-decoded, because they store intensities; float formats (EXR) are taken as is.
 fn distribution_image(bytes: &[u8], path: &Path) -> Result<DistributionImage, LoadError> {
-    let image = decode_image(bytes, path, "")?.to_rgb32f();
+    let image = decode_image(bytes, path, "", MAX_PROFILE_SIZE)?.to_rgb32f();
     let (width, height) = image.dimensions();
     let values: Vec<[f32; 3]> = image.pixels().map(|p| p.0).collect();
     if values.iter().flatten().any(|v| !(v.is_finite() && *v >= 0.0)) {

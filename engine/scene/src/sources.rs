@@ -7,7 +7,7 @@
 use std::path::{Component, Path, PathBuf};
 
 use crate::error::{LoadError, LoadErrorKind, LoadWarning, TextPos};
-use crate::limits::MAX_FILE_BYTES;
+use crate::limits::{read_file, MAX_FILE_BYTES};
 use crate::zip_level::ZipLevel;
 
 /// 64-bit FNV-1a: tiny, dependency-free and stable across platforms and Rust versions, which
@@ -67,14 +67,10 @@ impl Sources {
         if let Some(zip) = &mut self.zip {
             return zip.read(path);
         }
-        let meta = std::fs::metadata(path).map_err(|e| LoadError::io(path, &e))?;
-        if meta.is_dir() {
-            return Err(LoadError::new(path, LoadErrorKind::Io("is a directory, expected a file".into())));
-        }
-        if meta.len() > MAX_FILE_BYTES {
-            return Err(LoadError::too_large(path, format!("file is {} bytes (limit {MAX_FILE_BYTES})", meta.len())));
-        }
-        let bytes = std::fs::read(path).map_err(|e| LoadError::io(path, &e))?;
+        let bytes = read_file(path, MAX_FILE_BYTES).map_err(|e| match e.kind() {
+            std::io::ErrorKind::InvalidData => LoadError::too_large(path, e),
+            _ => LoadError::io(path, &e),
+        })?;
         if !self.files.iter().any(|f| f == path) {
             self.hash.write(&(bytes.len() as u64).to_le_bytes());
             self.hash.write(&bytes);

@@ -12,7 +12,8 @@ pub struct Replay {
 
 impl Replay {
     pub fn read(path: &Path) -> Result<Self, ReplayError> {
-        let bytes = std::fs::read(path).map_err(|e| ReplayError::new(path, ReplayErrorKind::Io(e)))?;
+        let bytes = scene::limits::read_file(path, scene::limits::MAX_REPLAY_BYTES)
+            .map_err(|e| ReplayError::new(path, ReplayErrorKind::Io(e)))?;
         Self::parse(&bytes, path)
     }
 

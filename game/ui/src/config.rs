@@ -89,7 +89,7 @@ impl Config {
 
     /// Reads the config file; a missing file gives the defaults.
     pub fn load(path: &Path) -> Result<Config, ConfigError> {
-        match fs::read_to_string(path) {
+        match engine::scene::limits::read_text(path, engine::scene::limits::MAX_TEXT_BYTES) {
             Ok(text) => Self::from_toml(&text, path),
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(Config::default()),
             Err(e) => Err(ConfigError::io(path, "could not read it", &e)),
@@ -117,6 +117,11 @@ impl Config {
     /// Writes the file atomically (a temporary file beside it, then a rename), so a crash
     /// mid-write leaves the old file or the new one, never half of one. Creates the folder.
     pub fn save(&self, path: &Path) -> Result<(), ConfigError> {
+        // A rename would replace whatever is there: never a device, FIFO or folder.
+        if fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+            let e = std::io::Error::new(std::io::ErrorKind::InvalidInput, "it is not a regular file");
+            return Err(ConfigError::io(path, "will not write it", &e));
+        }
         let dir = match path.parent() {
             Some(d) if !d.as_os_str().is_empty() => d,
             _ => Path::new("."),
@@ -140,7 +145,7 @@ impl Config {
 /// Copies a bad config file aside and returns the copy's path; an identical copy already
 /// there is reused rather than duplicated.
 fn keep_bad_file(path: &Path) -> std::io::Result<PathBuf> {
-    let original = fs::read(path)?;
+    let original = engine::scene::limits::read_file(path, engine::scene::limits::MAX_TEXT_BYTES)?;
     let mut name = path.file_name().map(OsString::from).unwrap_or_else(|| "config.toml".into());
     name.push(".bad");
     for n in 1..100 {

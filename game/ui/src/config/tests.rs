@@ -243,3 +243,19 @@ fn sensitivity_is_a_multiplier_of_the_old_constant() {
     assert_eq!(Config::default().radians_per_pixel(), 0.0025);
     assert_eq!(c.radians_per_pixel(), 0.005);
 }
+
+/// A device or FIFO named as the config file is refused at once, neither read without end nor
+/// replaced by a save.
+#[cfg(unix)]
+#[test]
+fn a_device_as_the_config_is_neither_read_nor_replaced() {
+    let zero = Path::new("/dev/zero");
+    let e = Config::load(zero).unwrap_err();
+    assert!(e.to_string().contains("not a regular file"), "{e}");
+    let (config, warning) = Config::load_or_default(zero);
+    assert_eq!(config, Config::default());
+    assert!(warning.is_some_and(|w| w.contains("/dev/zero")));
+    let e = Config::default().save(zero).unwrap_err();
+    assert!(e.to_string().contains("will not write it"), "{e}");
+    assert!(std::fs::metadata(zero).is_ok_and(|m| !m.is_file()), "still the device");
+}
