@@ -33,7 +33,19 @@ fn gbuffer_texel(world: vec3f, normal: vec3f, front: bool, albedo: vec3f, emissi
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
-    return gbuffer_texel(in.world, in.normal, front, surface_albedo(in), material.emissive.rgb);
+    return gbuffer_texel(in.world, in.normal, front, surface_base_color(in).rgb, surface_emissive(in));
+}
+
+// Alpha-tested materials: a fragment whose alpha is below the cutoff is a hole. A separate
+// entry point so that opaque materials keep early depth testing.
+@fragment
+fn fs_masked(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
+    let base_color = surface_base_color(in);
+    let emissive = surface_emissive(in);
+    if surface_cut_out(base_color) {
+        discard;
+    }
+    return gbuffer_texel(in.world, in.normal, front, base_color.rgb, emissive);
 }
 
 // Dynamic instances: same targets, colours from the instance instead of a material.

@@ -34,7 +34,17 @@ fn lamp_texel(world: vec3f, normal: vec3f, albedo: vec3f) -> LampOut {
 
 @fragment
 fn fs_main(in: VertexOut) -> LampOut {
-    return lamp_texel(in.world, in.normal, surface_albedo(in));
+    return lamp_texel(in.world, in.normal, surface_base_color(in).rgb);
+}
+
+// Alpha-tested materials: the lamp sees through their holes (shadows and the GI's flux).
+@fragment
+fn fs_masked(in: VertexOut) -> LampOut {
+    let base_color = surface_base_color(in);
+    if surface_cut_out(base_color) {
+        discard;
+    }
+    return lamp_texel(in.world, in.normal, base_color.rgb);
 }
 
 // Dynamic instances: they shadow the lamp and reflect its light like the level.

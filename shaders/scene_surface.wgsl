@@ -1,20 +1,37 @@
 // What every pass that rasterises the scene shares: the vertex layout, the material (group 1)
-// and how a fragment's albedo is found.
+// and how a fragment's albedo, alpha and emission are found.
 
 struct Material {
+    // Linear RGBA factor.
     base_color: vec4f,
-    // rgb emissive radiance; w: 1 when a base colour texture is bound.
+    // rgb: emitted radiance factor (× KHR_materials_emissive_strength).
     emissive: vec4f,
+    // KHR_texture_transform of the base colour texture: the rows of a 2×3 matrix acting on
+    // (u, v, 1); base_color_uv_0.w is the uv set it reads (0 or 1).
+    base_color_uv_0: vec4f,
+    base_color_uv_1: vec4f,
+    // The same for the emissive texture.
+    emissive_uv_0: vec4f,
+    emissive_uv_1: vec4f,
+    // x: alpha cutoff (fs_masked only: MASK, and BLEND drawn as MASK at 0.5).
+    alpha: vec4f,
 };
 
 @group(1) @binding(0) var<uniform> material: Material;
+// Each texture is 1×1 white when the material has none; each sampler is the texture's own
+// (wrap modes, filters).
 @group(1) @binding(1) var base_color_texture: texture_2d<f32>;
-@group(1) @binding(2) var material_sampler: sampler;
+@group(1) @binding(2) var base_color_sampler: sampler;
+@group(1) @binding(3) var emissive_texture: texture_2d<f32>;
+@group(1) @binding(4) var emissive_sampler: sampler;
 
 struct VertexIn {
     @location(0) position: vec3f,
     @location(1) normal: vec3f,
     @location(2) uv: vec2f,
+    @location(3) uv1: vec2f,
+    // Linear RGBA vertex colour (glTF COLOR_0; white when the file has none).
+    @location(4) color: vec4f,
 };
 
 struct VertexOut {
@@ -22,6 +39,8 @@ struct VertexOut {
     @location(0) world: vec3f,
     @location(1) normal: vec3f,
     @location(2) uv: vec2f,
+    @location(3) uv1: vec2f,
+    @location(4) color: vec4f,
 };
 
 // Passes world-space attributes through, projected by `view_proj`.
@@ -31,27 +50,44 @@ fn surface_vertex(v: VertexIn, view_proj: mat4x4f) -> VertexOut {
     out.world = v.position;
     out.normal = v.normal;
     out.uv = v.uv;
+    out.uv1 = v.uv1;
+    out.color = v.color;
     return out;
 }
 
-// Linear diffuse albedo ρ: the base colour factor times the base colour texture.
-fn surface_albedo(in: VertexOut) -> vec3f {
-    var albedo = material.base_color;
-    if material.emissive.w > 0.5 {
-        albedo *= textureSample(base_color_texture, material_sampler, in.uv);
-    }
-    return albedo.rgb;
+// A texture slot's coordinates: its uv set, through its transform (two matrix rows).
+fn texture_uv(in: VertexOut, row0: vec4f, row1: vec4f) -> vec2f {
+    let uv = vec3f(select(in.uv, in.uv1, row0.w > 0.5), 1.0);
+    return vec2f(dot(row0.xyz, uv), dot(row1.xyz, uv));
+}
+
+// Linear base colour: the factor × the base colour texture × the vertex colour. rgb is the
+// diffuse albedo ρ, a the coverage alpha-tested materials compare with their cutoff.
+fn surface_base_color(in: VertexOut) -> vec4f {
+    let uv = texture_uv(in, material.base_color_uv_0, material.base_color_uv_1);
+    return material.base_color * textureSample(base_color_texture, base_color_sampler, uv) * in.color;
+}
+
+// Emitted radiance: the factor × the emissive texture.
+fn surface_emissive(in: VertexOut) -> vec3f {
+    let uv = texture_uv(in, material.emissive_uv_0, material.emissive_uv_1);
+    return material.emissive.rgb * textureSample(emissive_texture, emissive_sampler, uv).rgb;
+}
+
+// Whether an alpha-tested fragment is cut out.
+fn surface_cut_out(base_color: vec4f) -> bool {
+    return base_color.a < material.alpha.x;
 }
 
 // A dynamic instance (engine::frame::Instance), per-instance vertex data after VertexIn's:
 // the model matrix by columns, linear albedo ρ and emitted radiance.
 struct InstanceIn {
-    @location(3) model_0: vec4f,
-    @location(4) model_1: vec4f,
-    @location(5) model_2: vec4f,
-    @location(6) model_3: vec4f,
-    @location(7) base_color: vec4f,
-    @location(8) emissive: vec4f,
+    @location(5) model_0: vec4f,
+    @location(6) model_1: vec4f,
+    @location(7) model_2: vec4f,
+    @location(8) model_3: vec4f,
+    @location(9) base_color: vec4f,
+    @location(10) emissive: vec4f,
 };
 
 struct InstanceOut {

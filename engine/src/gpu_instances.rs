@@ -16,7 +16,7 @@ pub const INSTANCE_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBuffe
     array_stride: std::mem::size_of::<GpuInstance>() as u64,
     step_mode: wgpu::VertexStepMode::Instance,
     attributes: &wgpu::vertex_attr_array![
-        3 => Float32x4, 4 => Float32x4, 5 => Float32x4, 6 => Float32x4, 7 => Float32x4, 8 => Float32x4
+        5 => Float32x4, 6 => Float32x4, 7 => Float32x4, 8 => Float32x4, 9 => Float32x4, 10 => Float32x4
     ],
 };
 
@@ -59,14 +59,16 @@ impl GpuInstances {
         }
     }
 
-    /// Uploads a mesh (`scene::Vertex` layout, triangle list). Panics if an index is out of
-    /// range: that is a bug in the code building the mesh.
+    /// Uploads a mesh (`scene::Vertex` layout, triangle list; an instance's colours come from
+    /// the instance, the vertices' `uv`, `uv1` and `color` are not read). Panics if an index
+    /// is out of range: that is a bug in the code building the mesh.
     pub fn add_mesh(&mut self, gpu: &Gpu, vertices: &[Vertex], indices: &[u32]) -> MeshId {
         if let Some(&bad) = indices.iter().find(|&&i| i as usize >= vertices.len()) {
             panic!("add_mesh: index {bad} is out of range of {} vertices", vertices.len());
         }
         // Buffers may not be empty; an empty mesh keeps placeholders and is never drawn.
-        let vertex_bytes: &[u8] = if vertices.is_empty() { &[0; 32] } else { bytemuck::cast_slice(vertices) };
+        let placeholder = [0u8; std::mem::size_of::<Vertex>()];
+        let vertex_bytes: &[u8] = if vertices.is_empty() { &placeholder } else { bytemuck::cast_slice(vertices) };
         let index_bytes: &[u8] = if indices.is_empty() { &[0; 4] } else { bytemuck::cast_slice(indices) };
         let id = MeshId(self.meshes.len() as u32);
         let label = format!("mesh {}", id.0);

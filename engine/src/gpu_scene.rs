@@ -1,19 +1,44 @@
 //! The scene's geometry and materials on the GPU: one vertex and one index buffer for the
 //! whole level, one draw per mesh, one bind group per material.
 
+use std::collections::HashMap;
+
 use bytemuck::{Pod, Zeroable};
-use scene::{Scene, Texture, Vertex};
+use scene::{Filter, Material, Scene, Texture, TextureRef, Vertex, Wrap};
 use wgpu::util::DeviceExt;
 
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 
-/// The vertex layout matching `scene::Vertex` (position, normal, uv).
+/// The vertex layout matching `scene::Vertex` (position, normal, uv, uv1, colour) and
+/// `VertexIn` in shaders/scene_surface.wgsl.
 pub const VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     array_stride: std::mem::size_of::<Vertex>() as u64,
     step_mode: wgpu::VertexStepMode::Vertex,
-    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2],
+    attributes: &wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x2, 4 => Float32x4
+    ],
 };
+
+/// How many ways a material is rasterised: opaque or alpha-tested (`fs_masked`, which
+/// discards), times drawn from both sides or back faces culled. [`variant`] numbers them.
+pub const VARIANTS: usize = 4;
+
+/// The variant of a material: bit 0 alpha-tested (MASK, and BLEND drawn as MASK), bit 1
+/// single-sided (back faces culled).
+pub fn variant(material: &Material) -> usize {
+    usize::from(material.alpha_cutoff().is_some()) | (usize::from(!material.double_sided) << 1)
+}
+
+/// Whether variant `v` discards fragments below the alpha cutoff.
+pub fn variant_masked(v: usize) -> bool {
+    v & 1 != 0
+}
+
+/// Whether variant `v` culls back faces.
+pub fn variant_culls(v: usize) -> bool {
+    v & 2 != 0
+}
 
 #[derive(Clone, Copy, Debug)]
 pub struct Draw {
@@ -21,18 +46,65 @@ pub struct Draw {
     pub index_count: u32,
     pub base_vertex: i32,
     pub material: usize,
+    /// The material's [`variant`]: which pipeline draws it.
+    pub variant: usize,
 }
 
+/// `Material` in shaders/scene_surface.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct MaterialUniform {
     base_color: [f32; 4],
     emissive: [f32; 4],
+    /// The base colour texture's uv map: rows of a 2×3 matrix on (u, v, 1); row 0's w is the
+    /// uv set (0 or 1).
+    base_color_uv: [[f32; 4]; 2],
+    emissive_uv: [[f32; 4]; 2],
+    /// x: the alpha cutoff (read by `fs_masked` only).
+    alpha: [f32; 4],
+}
+
+/// The uniform rows of a texture slot's uv map (identity on set 0 when there is no texture).
+fn uv_rows(t: Option<&TextureRef>) -> [[f32; 4]; 2] {
+    let (m, set) = match t {
+        Some(t) => (t.transform.matrix(), t.tex_coord as f32),
+        None => (scene::TextureTransform::IDENTITY.matrix(), 0.0),
+    };
+    [[m[0][0], m[0][1], m[0][2], set], [m[1][0], m[1][1], m[1][2], 0.0]]
+}
+
+fn sampler_descriptor(s: &scene::Sampler) -> wgpu::SamplerDescriptor<'static> {
+    let address = |w: Wrap| match w {
+        Wrap::Repeat => wgpu::AddressMode::Repeat,
+        Wrap::ClampToEdge => wgpu::AddressMode::ClampToEdge,
+        Wrap::MirroredRepeat => wgpu::AddressMode::MirrorRepeat,
+    };
+    let filter = |f: Filter| match f {
+        Filter::Nearest => wgpu::FilterMode::Nearest,
+        Filter::Linear => wgpu::FilterMode::Linear,
+    };
+    let (mipmap_filter, lod_max_clamp) = match s.mipmap_filter {
+        Some(Filter::Nearest) => (wgpu::MipmapFilterMode::Nearest, 32.0),
+        Some(Filter::Linear) => (wgpu::MipmapFilterMode::Linear, 32.0),
+        // No mipmapping: the full-size level only.
+        None => (wgpu::MipmapFilterMode::Nearest, 0.0),
+    };
+    wgpu::SamplerDescriptor {
+        label: Some("material"),
+        address_mode_u: address(s.wrap_u),
+        address_mode_v: address(s.wrap_v),
+        mag_filter: filter(s.mag_filter),
+        min_filter: filter(s.min_filter),
+        mipmap_filter,
+        lod_max_clamp,
+        ..Default::default()
+    }
 }
 
 pub struct GpuScene {
     pub vertices: wgpu::Buffer,
     pub indices: wgpu::Buffer,
+    /// Sorted by variant, then material.
     pub draws: Vec<Draw>,
     pub materials: Vec<wgpu::BindGroup>,
 }
@@ -52,13 +124,16 @@ impl GpuScene {
                 index_count: mesh.indices.len() as u32,
                 base_vertex: vertices.len() as i32,
                 material: mesh.material,
+                variant: scene.materials.get(mesh.material).map_or(0, variant),
             });
             vertices.extend_from_slice(&mesh.vertices);
             indices.extend_from_slice(&mesh.indices);
         }
-        // Sorting by material keeps bind-group switches to one per material.
-        draws.sort_by_key(|d| d.material);
-        let vertex_bytes: &[u8] = if vertices.is_empty() { &[0; 32] } else { bytemuck::cast_slice(&vertices) };
+        // Sorting keeps pipeline switches to one per variant, bind-group switches to one per
+        // material.
+        draws.sort_by_key(|d| (d.variant, d.material));
+        let placeholder = [0u8; std::mem::size_of::<Vertex>()];
+        let vertex_bytes: &[u8] = if vertices.is_empty() { &placeholder } else { bytemuck::cast_slice(&vertices) };
         let index_bytes: &[u8] = if indices.is_empty() { &[0; 4] } else { bytemuck::cast_slice(&indices) };
         let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("scene vertices"),
@@ -71,15 +146,10 @@ impl GpuScene {
             usage: wgpu::BufferUsages::INDEX,
         });
 
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("material"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            ..Default::default()
-        });
+        let mut samplers: HashMap<scene::Sampler, wgpu::Sampler> = HashMap::new();
+        let mut sampler = |s: &scene::Sampler| -> wgpu::Sampler {
+            samplers.entry(*s).or_insert_with(|| device.create_sampler(&sampler_descriptor(s))).clone()
+        };
         let white = Texture { name: "white".into(), width: 1, height: 1, rgba8: vec![255; 4] };
         let textures: Vec<wgpu::TextureView> = scene.textures.iter().map(|t| upload_texture(gpu, t)).collect();
         let white = upload_texture(gpu, &white);
@@ -87,10 +157,20 @@ impl GpuScene {
             .materials
             .iter()
             .map(|m| {
-                let texture = m.base_color_texture.and_then(|i| textures.get(i));
+                // A missing texture samples white: the factor alone.
+                let slot = |t: Option<&TextureRef>| {
+                    let view = t.and_then(|t| textures.get(t.texture)).unwrap_or(&white);
+                    (view.clone(), t.map(|t| t.sampler).unwrap_or_default())
+                };
+                let (base_view, base_sampler) = slot(m.base_color_texture.as_ref());
+                let (emissive_view, emissive_sampler) = slot(m.emissive_texture.as_ref());
+                let (base_sampler, emissive_sampler) = (sampler(&base_sampler), sampler(&emissive_sampler));
                 let uniform = MaterialUniform {
                     base_color: m.base_color,
-                    emissive: [m.emissive[0], m.emissive[1], m.emissive[2], if texture.is_some() { 1.0 } else { 0.0 }],
+                    emissive: [m.emissive[0], m.emissive[1], m.emissive[2], 0.0],
+                    base_color_uv: uv_rows(m.base_color_texture.as_ref()),
+                    emissive_uv: uv_rows(m.emissive_texture.as_ref()),
+                    alpha: [m.alpha_cutoff().unwrap_or(0.0), 0.0, 0.0, 0.0],
                 };
                 let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(&m.name),
@@ -102,11 +182,16 @@ impl GpuScene {
                     layout: &layouts.material,
                     entries: &[
                         wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&base_view) },
+                        wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&base_sampler) },
                         wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: wgpu::BindingResource::TextureView(texture.unwrap_or(&white)),
+                            binding: 3,
+                            resource: wgpu::BindingResource::TextureView(&emissive_view),
                         },
-                        wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&sampler) },
+                        wgpu::BindGroupEntry {
+                            binding: 4,
+                            resource: wgpu::BindingResource::Sampler(&emissive_sampler),
+                        },
                     ],
                 })
             })
@@ -114,12 +199,29 @@ impl GpuScene {
         Self { vertices, indices, draws, materials }
     }
 
-    /// Draws every mesh; the caller has set the pipeline and group 0, materials go in group 1.
-    pub fn draw_all(&self, pass: &mut wgpu::RenderPass<'_>) {
+    /// Which of the [`VARIANTS`] some draw uses (a pass builds pipelines for those only).
+    pub fn variants_used(&self) -> [bool; VARIANTS] {
+        let mut used = [false; VARIANTS];
+        for d in &self.draws {
+            used[d.variant] = true;
+        }
+        used
+    }
+
+    /// Draws every mesh, each with `pipelines[its variant]` (built for every variant in
+    /// [`Self::variants_used`]); the caller has set group 0, materials go in group 1.
+    pub fn draw_all(&self, pass: &mut wgpu::RenderPass<'_>, pipelines: &[Option<wgpu::RenderPipeline>; VARIANTS]) {
         pass.set_vertex_buffer(0, self.vertices.slice(..));
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-        let mut bound = usize::MAX;
+        let (mut bound, mut variant) = (usize::MAX, usize::MAX);
         for d in &self.draws {
+            if d.variant != variant {
+                let Some(pipeline) = &pipelines[d.variant] else {
+                    panic!("no pipeline for scene variant {}", d.variant);
+                };
+                pass.set_pipeline(pipeline);
+                variant = d.variant;
+            }
             if d.material != bound {
                 pass.set_bind_group(1, &self.materials[d.material], &[]);
                 bound = d.material;

@@ -24,11 +24,11 @@ pub fn cuboid(half_extents: Vec3) -> (Vec<Vertex>, Vec<u32>) {
     for (n, u, v) in faces {
         let base = vertices.len() as u32;
         for (su, sv) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-            vertices.push(Vertex {
-                position: ((n + u * su + v * sv) * half_extents).to_array(),
-                normal: n.to_array(),
-                uv: [(su + 1.0) * 0.5, (1.0 - sv) * 0.5],
-            });
+            vertices.push(Vertex::new(
+                ((n + u * su + v * sv) * half_extents).to_array(),
+                n.to_array(),
+                [(su + 1.0) * 0.5, (1.0 - sv) * 0.5],
+            ));
         }
         indices.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
     }
@@ -112,11 +112,11 @@ fn lathe(profile: &[ProfilePoint], segments: u32) -> (Vec<Vertex>, Vec<u32>) {
             let phi = TAU * (s % segments) as f32 / segments as f32;
             let (sin, cos) = phi.sin_cos();
             let radial = |v: Vec2| Vec3::new(v.x * sin, v.y, v.x * cos);
-            vertices.push(Vertex {
-                position: radial(p.at).to_array(),
-                normal: radial(p.normal).normalize().to_array(),
-                uv: [s as f32 / segments as f32, 1.0 - k as f32 / (profile.len() - 1) as f32],
-            });
+            vertices.push(Vertex::new(
+                radial(p.at).to_array(),
+                radial(p.normal).normalize().to_array(),
+                [s as f32 / segments as f32, 1.0 - k as f32 / (profile.len() - 1) as f32],
+            ));
         }
     }
     let mut indices = Vec::new();

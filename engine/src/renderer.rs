@@ -39,10 +39,10 @@ impl Renderer {
 
         let mut graph = RenderGraph::new();
         graph.import(names::OUTPUT);
-        graph.add_pass(Box::new(GBufferPass::new(gpu, &layouts)));
+        graph.add_pass(Box::new(GBufferPass::new(gpu, &layouts, &gpu_scene)));
         // Declares the same resources whether the lamp is attached or not (it records nothing
         // while attached), so putting the lamp down or picking it up never recompiles the graph.
-        graph.add_pass(Box::new(LampViewPass::new(gpu, &layouts)));
+        graph.add_pass(Box::new(LampViewPass::new(gpu, &layouts, &gpu_scene)));
         graph.add_pass(Box::new(DirectLightPass::new(gpu, &layouts)));
         graph.add_pass(Box::new(CompositePass::new(gpu, &layouts)));
         graph.add_pass(Box::new(PresentPass::new(gpu, &layouts, present.clone())));

@@ -15,7 +15,7 @@ use engine::scene::{HeadlampProfile, Material, Mesh, Scene, Vertex};
 /// One quad 2 m in front of the camera.
 fn tiny_scene() -> Scene {
     let corners = [[-1.0, -1.0, -2.0], [1.0, -1.0, -2.0], [1.0, 1.0, -2.0], [-1.0, 1.0, -2.0]];
-    let vertices = corners.iter().map(|&position| Vertex { position, normal: [0.0, 0.0, 1.0], uv: [0.0; 2] }).collect();
+    let vertices = corners.iter().map(|&position| Vertex::new(position, [0.0, 0.0, 1.0], [0.0; 2])).collect();
     Scene {
         meshes: vec![Mesh { name: "quad".into(), vertices, indices: vec![0, 1, 2, 0, 2, 3], material: 0 }],
         materials: vec![Material::default()],

@@ -29,7 +29,7 @@ fn gpu() -> Gpu {
 /// A 20 m wall facing +Z at z = `z`.
 fn wall(z: f32) -> Scene {
     let corners = [[-10.0, -10.0, z], [10.0, -10.0, z], [10.0, 10.0, z], [-10.0, 10.0, z]];
-    let vertices = corners.iter().map(|&position| Vertex { position, normal: [0.0, 0.0, 1.0], uv: [0.0; 2] }).collect();
+    let vertices = corners.iter().map(|&position| Vertex::new(position, [0.0, 0.0, 1.0], [0.0; 2])).collect();
     Scene {
         meshes: vec![Mesh { name: "wall".into(), vertices, indices: vec![0, 1, 2, 0, 2, 3], material: 0 }],
         materials: vec![Material { base_color: [WALL_RHO, WALL_RHO, WALL_RHO, 1.0], ..Material::default() }],

@@ -21,8 +21,7 @@ fn plane(centre: Vec3, normal: Vec3, rho: f32) -> Scene {
     let u = n.cross(if n.y.abs() > 0.9 { Vec3::X } else { Vec3::Y }).normalize() * 10.0;
     let v = n.cross(u);
     let corners = [centre - u - v, centre + u - v, centre + u + v, centre - u + v];
-    let vertices =
-        corners.iter().map(|p| Vertex { position: p.to_array(), normal: n.to_array(), uv: [0.0; 2] }).collect();
+    let vertices = corners.iter().map(|p| Vertex::new(p.to_array(), n.to_array(), [0.0; 2])).collect();
     Scene {
         meshes: vec![Mesh { name: "plane".into(), vertices, indices: vec![0, 1, 2, 0, 2, 3], material: 0 }],
         materials: vec![Material { base_color: [rho, rho, rho, 1.0], ..Material::default() }],

@@ -25,7 +25,7 @@ fn gpu() -> Gpu {
 fn room() -> Scene {
     let quad = |corners: [[f32; 3]; 4], normal: [f32; 3], material: usize| Mesh {
         name: format!("quad{material}"),
-        vertices: corners.iter().map(|&position| Vertex { position, normal, uv: [0.0; 2] }).collect(),
+        vertices: corners.iter().map(|&position| Vertex::new(position, normal, [0.0; 2])).collect(),
         indices: vec![0, 1, 2, 0, 2, 3],
         material,
     };

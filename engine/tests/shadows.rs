@@ -55,8 +55,7 @@ fn scene(quads: &[Quad]) -> Scene {
         let (n, u, v) = q.axes();
         let (u, v) = (u * q.half, v * q.half);
         let corners = [q.centre - u - v, q.centre + u - v, q.centre + u + v, q.centre - u + v];
-        let vertices =
-            corners.iter().map(|p| Vertex { position: p.to_array(), normal: n.to_array(), uv: [0.0; 2] }).collect();
+        let vertices = corners.iter().map(|p| Vertex::new(p.to_array(), n.to_array(), [0.0; 2])).collect();
         meshes.push(Mesh { name: format!("quad{i}"), vertices, indices: vec![0, 1, 2, 0, 2, 3], material: i });
         materials.push(Material { base_color: [q.rho, q.rho, q.rho, 1.0], ..Material::default() });
     }

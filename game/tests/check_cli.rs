@@ -89,7 +89,7 @@ fn unreachable_things_a_stuck_spawn_and_ignored_features_are_reported() {
         marker("way_out", [8.0, 0.0, 5.0], json!({"exit": true})),
         marker("crawler", [8.0, 0.0, 1.0], json!({"enemy": "crawler"})),
     ];
-    two_rooms(&dir, &markers, LEVEL, json!({"name": "leaves", "alphaMode": "MASK"}));
+    two_rooms(&dir, &markers, LEVEL, json!({"name": "leaves", "alphaMode": "BLEND"}));
     let path = dir.to_str().unwrap();
     let out = headlamp(&["check", path]);
     let lines = printed(&out);
@@ -97,7 +97,10 @@ fn unreachable_things_a_stuck_spawn_and_ignored_features_are_reported() {
     has(&lines, &["scene.gltf: error: node 'ammo_far': the ammo pickup", "cannot be walked to from the spawn"]);
     has(&lines, &["scene.gltf: error: the exit at (8.00, 0.00, 5.00) cannot be walked to"]);
     has(&lines, &["scene.gltf: warning: node 'crawler': this crawler", "cannot walk to the player's spawn"]);
-    has(&lines, &["scene.gltf: warning: material 0 ('leaves'): alphaMode MASK is not supported"]);
+    has(
+        &lines,
+        &["scene.gltf: warning: material 0 ('leaves'): alphaMode BLEND (partial transparency) is not supported"],
+    );
     assert!(!lines.iter().any(|l| l.contains("ammo_near")), "the near pickup is reachable: {lines:#?}");
 
     // The same findings for tools.
@@ -118,7 +121,7 @@ fn unreachable_things_a_stuck_spawn_and_ignored_features_are_reported() {
 
     // Won by the exit once it is in the spawn's room; warnings alone exit 0.
     let markers = [marker("way_out", [3.0, 0.0, 5.0], json!({"exit": true}))];
-    two_rooms(&dir, &markers, LEVEL, json!({"name": "leaves", "alphaMode": "MASK"}));
+    two_rooms(&dir, &markers, LEVEL, json!({"name": "leaves", "alphaMode": "BLEND"}));
     let out = headlamp(&["check", path]);
     let lines = printed(&out);
     assert_eq!(out.status.code(), Some(0), "{lines:#?}");

@@ -13,6 +13,10 @@ pub(crate) struct RawTriangles {
     pub positions: Vec<[f32; 3]>,
     pub normals: Option<Vec<[f32; 3]>>,
     pub uvs: Option<Vec<[f32; 2]>>,
+    /// The second texture coordinate set (glTF TEXCOORD_1).
+    pub uvs1: Option<Vec<[f32; 2]>>,
+    /// Linear RGBA vertex colours (glTF COLOR_0, RGB given alpha 1); white when None.
+    pub colors: Option<Vec<[f32; 4]>>,
     /// Triangle list, length a multiple of 3, every index < positions.len().
     pub indices: Vec<u32>,
 }
@@ -44,9 +48,16 @@ pub(crate) fn bake(raw: &RawTriangles, world: &Mat4) -> Result<(Vec<Vertex>, Vec
             tri.swap(1, 2);
         }
     }
-    let uv = |i: usize| -> [f32; 2] {
-        let t = raw.uvs.as_ref().and_then(|u| u.get(i)).copied().unwrap_or([0.0; 2]);
+    let uv_of = |set: &Option<Vec<[f32; 2]>>, i: usize| -> [f32; 2] {
+        let t = set.as_ref().and_then(|u| u.get(i)).copied().unwrap_or([0.0; 2]);
         [finite_or_zero(t[0]), finite_or_zero(t[1])]
+    };
+    let vertex = |i: usize, position: Vec3, normal: Vec3| Vertex {
+        position: position.into(),
+        normal: normal.into(),
+        uv: uv_of(&raw.uvs, i),
+        uv1: uv_of(&raw.uvs1, i),
+        color: raw.colors.as_ref().and_then(|c| c.get(i)).copied().unwrap_or([1.0; 4]),
     };
 
     let Some(normals) = &raw.normals else {
@@ -56,7 +67,7 @@ pub(crate) fn bake(raw: &RawTriangles, world: &Mat4) -> Result<(Vec<Vertex>, Vec
             let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| i as usize);
             let n = face_normal(positions[a], positions[b], positions[c]).unwrap_or(Vec3::Y);
             for i in [a, b, c] {
-                vertices.push(Vertex { position: positions[i].into(), normal: n.into(), uv: uv(i) });
+                vertices.push(vertex(i, positions[i], n));
             }
         }
         let flat_indices = (0..vertices.len() as u32).collect();
@@ -79,7 +90,7 @@ pub(crate) fn bake(raw: &RawTriangles, world: &Mat4) -> Result<(Vec<Vertex>, Vec
                 smooth[i]
             }
         };
-        vertices.push(Vertex { position: (*p).into(), normal: n.into(), uv: uv(i) });
+        vertices.push(vertex(i, *p, n));
     }
     Ok((vertices, indices))
 }

@@ -181,6 +181,30 @@ pub(crate) fn read_vectors<const N: usize>(
         .collect())
 }
 
+/// Reads a `COLOR_n` attribute as linear RGBA: VEC3 (alpha 1) or VEC4 of floats, or of
+/// normalized unsigned bytes or shorts (the component types the glTF spec allows for colours).
+pub(crate) fn read_colors(acc: &Accessor, buffers: &Buffers, what: &str) -> Result<Vec<[f32; 4]>, LoadErrorKind> {
+    let n = match acc.dimensions() {
+        Dimensions::Vec3 => 3,
+        Dimensions::Vec4 => 4,
+        other => {
+            return Err(corrupt(format!("accessor {} for {what} is {other:?}, expected VEC3 or VEC4", acc.index())));
+        }
+    };
+    let (ty, norm) = (acc.data_type(), acc.normalized());
+    if !(ty == DataType::F32 || (norm && matches!(ty, DataType::U8 | DataType::U16))) {
+        return Err(corrupt(format!(
+            "accessor {} for {what} is {ty:?}{}, expected float or normalized unsigned byte/short",
+            acc.index(),
+            if norm { " (normalized)" } else { "" }
+        )));
+    }
+    let (bytes, _) = packed_bytes(acc, buffers)?;
+    let size = component_size(ty);
+    let values: Vec<f32> = bytes.chunks_exact(size).map(|b| decode_component(ty, norm, b)).collect();
+    Ok(values.chunks_exact(n).map(|c| [c[0], c[1], c[2], if n == 4 { c[3] } else { 1.0 }]).collect())
+}
+
 /// Reads a vertex index accessor (unsigned byte, short or int scalars).
 pub(crate) fn read_indices(acc: &Accessor, buffers: &Buffers) -> Result<Vec<u32>, LoadErrorKind> {
     let ty = acc.data_type();

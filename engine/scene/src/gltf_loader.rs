@@ -11,23 +11,31 @@ use std::path::Path;
 use glam::{Mat3, Mat4, Quat, Vec3};
 use gltf::camera::Projection as GltfProjection;
 use gltf::khr_lights_punctual::Kind as GltfLightKind;
+use gltf::material::AlphaMode as GltfAlphaMode;
 use gltf::mesh::{Mode, Semantic};
+use gltf::texture::{MagFilter, MinFilter, WrappingMode};
 use gltf::{Document, Node};
 
 use crate::error::{one_line, LoadError, LoadErrorKind};
 use crate::geometry::{bake, rigid_pose, RawTriangles};
-use crate::gltf_accessor::{read_indices, read_vectors, view_bytes};
+use crate::gltf_accessor::{read_colors, read_indices, read_vectors, view_bytes};
 use crate::gltf_container::{is_glb, parse_uri, split_glb, UriTarget};
 use crate::gltf_unsupported::unsupported_features;
 use crate::image_loader::{decode_texture, file_label};
 use crate::limits::{MAX_FILE_BYTES, MAX_TRIANGLES};
 use crate::sources::Sources;
-use crate::{LightKind, Material, Mesh, NodeExtras, Projection, PunctualLight, Scene, SceneCamera};
+use crate::{
+    AlphaMode, Filter, LightKind, Material, Mesh, NodeExtras, Projection, PunctualLight, Sampler, Scene, SceneCamera,
+    TextureRef, TextureTransform, Wrap,
+};
 
 /// Loads a .gltf or .glb file (the container is recognised by its bytes, not its extension).
 ///
 /// The default scene is used (else scene 0, else every root node); meshes are baked to world
-/// space, cameras and `KHR_lights_punctual` lights get world poses, node `extras` are kept.
+/// space (with `TEXCOORD_0`/`_1` and `COLOR_0`), cameras and `KHR_lights_punctual` lights get
+/// world poses, node `extras` are kept. Materials keep base colour and emissive factors and
+/// textures (samplers, `KHR_texture_transform`, `KHR_materials_emissive_strength`), alpha
+/// mode and sidedness; a primitive without a material gets [`Material::gltf_default`].
 pub fn load_gltf(path: &Path) -> Result<Scene, LoadError> {
     load_gltf_with(path, &mut Sources::new(None))
 }
@@ -285,16 +293,32 @@ impl Builder<'_> {
             Some(acc) => Some(read_vectors::<3>(&acc, &self.buffers, "NORMAL").map_err(|k| self.at(with_label(k)))?),
             None => None,
         };
-        let uvs = match prim.get(&Semantic::TexCoords(0)) {
-            Some(acc) => {
-                Some(read_vectors::<2>(&acc, &self.buffers, "TEXCOORD_0").map_err(|k| self.at(with_label(k)))?)
-            }
+        let read_uvs = |set: u32, what: &str| match prim.get(&Semantic::TexCoords(set)) {
+            Some(acc) => read_vectors::<2>(&acc, &self.buffers, what).map(Some).map_err(|k| self.at(with_label(k))),
+            None => Ok(None),
+        };
+        let uvs = read_uvs(0, "TEXCOORD_0")?;
+        let mut uvs1 = read_uvs(1, "TEXCOORD_1")?;
+        let colors = match prim.get(&Semantic::Colors(0)) {
+            Some(acc) => Some(read_colors(&acc, &self.buffers, "COLOR_0").map_err(|k| self.at(with_label(k)))?),
             None => None,
         };
-        for (what, len) in [("NORMAL", normals.as_ref().map(Vec::len)), ("TEXCOORD_0", uvs.as_ref().map(Vec::len))] {
+        for (what, len) in [
+            ("NORMAL", normals.as_ref().map(Vec::len)),
+            ("TEXCOORD_0", uvs.as_ref().map(Vec::len)),
+            ("TEXCOORD_1", uvs1.as_ref().map(Vec::len)),
+            ("COLOR_0", colors.as_ref().map(Vec::len)),
+        ] {
             if let Some(len) = len.filter(|&l| l != n) {
                 return Err(self.corrupt(format!("{label}: {what} has {len} elements but POSITION has {n}")));
             }
+        }
+        if let Some((i, c)) =
+            colors.iter().flatten().enumerate().find(|(_, c)| !c.iter().all(|v| v.is_finite() && *v >= 0.0))
+        {
+            return Err(
+                self.corrupt(format!("{label}: vertex {i} has COLOR_0 {c:?}; colours must be finite and non-negative"))
+            );
         }
         let indices = match prim.indices() {
             Some(acc) => read_indices(&acc, &self.buffers).map_err(|k| self.at(with_label(k)))?,
@@ -319,10 +343,20 @@ impl Builder<'_> {
             return Err(LoadError::too_large(self.path, format!("scene has more than {MAX_TRIANGLES} triangles")));
         }
 
-        let raw = RawTriangles { positions, normals, uvs, indices };
+        let material = self.material(prim.material())?;
+        let uses_uv1 = {
+            let m = &self.scene.materials[material];
+            [&m.base_color_texture, &m.emissive_texture].iter().any(|t| t.is_some_and(|t| t.tex_coord == 1))
+        };
+        if uses_uv1 && uvs1.is_none() {
+            let message =
+                format!("{label}: its material's textures read TEXCOORD_1, which it lacks; TEXCOORD_0 is used");
+            self.sources.warn(self.path, None, message);
+            uvs1.clone_from(&uvs);
+        }
+        let raw = RawTriangles { positions, normals, uvs, uvs1, colors, indices };
         let (vertices, indices) =
             bake(&raw, world).map_err(|e| self.corrupt(format!("{label} (node {}): {e}", node.index())))?;
-        let material = self.material(prim.material())?;
         let name = if mesh.primitives().len() > 1 { format!("{mesh_name}#{}", prim.index()) } else { mesh_name };
         self.scene.meshes.push(Mesh { name, vertices, indices, material });
         Ok(())
@@ -335,32 +369,49 @@ impl Builder<'_> {
             return Ok(i);
         }
         let material = match m.index() {
-            None => Material::default(),
+            None => Material::gltf_default(),
             Some(idx) => {
                 let pbr = m.pbr_metallic_roughness();
                 let base_color = pbr.base_color_factor();
-                let emissive = m.emissive_factor();
-                if !base_color.iter().chain(&emissive).all(|c| c.is_finite() && *c >= 0.0) {
+                let factor = m.emissive_factor();
+                if !base_color.iter().chain(&factor).all(|c| c.is_finite() && *c >= 0.0) {
                     return Err(self.corrupt(format!("material {idx}: colour factors must be finite and non-negative")));
                 }
+                let strength = m.emissive_strength().unwrap_or(1.0);
+                if !(strength.is_finite() && strength >= 0.0) {
+                    return Err(self.corrupt(format!(
+                        "material {idx}: KHR_materials_emissive_strength {strength} must be finite and non-negative"
+                    )));
+                }
                 let base_color_texture = match pbr.base_color_texture() {
-                    Some(info) => {
-                        if info.tex_coord() != 0 {
-                            let message = format!(
-                                "material {idx}: base colour texture uses TEXCOORD_{}; TEXCOORD_0 is used instead",
-                                info.tex_coord()
-                            );
-                            self.sources.warn(self.path, None, message);
-                        }
-                        Some(self.texture(info.texture().source())?)
-                    }
+                    Some(info) => Some(self.texture_ref(idx, "base colour", &info)?),
                     None => None,
+                };
+                let emissive_texture = match m.emissive_texture() {
+                    Some(info) => Some(self.texture_ref(idx, "emissive", &info)?),
+                    None => None,
+                };
+                let alpha_mode = match m.alpha_mode() {
+                    GltfAlphaMode::Opaque => AlphaMode::Opaque,
+                    GltfAlphaMode::Mask => {
+                        let cutoff = m.alpha_cutoff().unwrap_or(0.5);
+                        if !(cutoff.is_finite() && cutoff >= 0.0) {
+                            return Err(self.corrupt(format!(
+                                "material {idx}: alphaCutoff {cutoff} must be finite and non-negative"
+                            )));
+                        }
+                        AlphaMode::Mask { cutoff }
+                    }
+                    GltfAlphaMode::Blend => AlphaMode::Blend,
                 };
                 Material {
                     name: m.name().map(str::to_owned).unwrap_or_else(|| format!("material{idx}")),
                     base_color,
                     base_color_texture,
-                    emissive,
+                    emissive: factor.map(|c| c * strength),
+                    emissive_texture,
+                    alpha_mode,
+                    double_sided: m.double_sided(),
                 }
             }
         };
@@ -368,6 +419,44 @@ impl Builder<'_> {
         let i = self.scene.materials.len() - 1;
         self.materials.insert(m.index(), i);
         Ok(i)
+    }
+
+    /// A material's texture slot (`what`: "base colour", "emissive"): its image, sampler, uv
+    /// set and `KHR_texture_transform` (whose `texCoord` overrides the slot's own).
+    fn texture_ref(
+        &mut self,
+        material: usize,
+        what: &str,
+        info: &gltf::texture::Info,
+    ) -> Result<TextureRef, LoadError> {
+        let transform = info.texture_transform();
+        let mut tex_coord = transform.as_ref().and_then(|t| t.tex_coord()).unwrap_or(info.tex_coord());
+        if tex_coord > 1 {
+            let message = format!(
+                "material {material}: {what} texture uses TEXCOORD_{tex_coord}; only TEXCOORD_0 and TEXCOORD_1 \
+                 are read, TEXCOORD_0 is used instead"
+            );
+            self.sources.warn(self.path, None, message);
+            tex_coord = 0;
+        }
+        let transform = match transform {
+            Some(t) => {
+                let transform = TextureTransform { offset: t.offset(), rotation: t.rotation(), scale: t.scale() };
+                let values = transform.offset.iter().chain(&transform.scale).chain([&transform.rotation]);
+                if !values.into_iter().all(|v| v.is_finite()) {
+                    return Err(self.corrupt(format!(
+                        "material {material}: {what} texture's KHR_texture_transform {transform:?} has \
+                         non-finite values"
+                    )));
+                }
+                transform
+            }
+            None => TextureTransform::IDENTITY,
+        };
+        let texture = info.texture();
+        let sampler = convert_sampler(&texture.sampler());
+        let texture = self.texture(texture.source())?;
+        Ok(TextureRef { texture, sampler, tex_coord, transform })
     }
 
     /// Index of the scene texture for a glTF image, decoding it on first use.
@@ -481,6 +570,28 @@ impl Builder<'_> {
         let name = light.name().or(node.name()).map(str::to_owned).unwrap_or_else(|| format!("light{}", light.index()));
         Ok(PunctualLight { name, kind, position: world.w_axis.truncate(), direction, color, intensity, range })
     }
+}
+
+/// A glTF sampler; an unset `minFilter` gets trilinear filtering, an unset `magFilter` linear.
+fn convert_sampler(s: &gltf::texture::Sampler) -> Sampler {
+    let wrap = |w: WrappingMode| match w {
+        WrappingMode::Repeat => Wrap::Repeat,
+        WrappingMode::ClampToEdge => Wrap::ClampToEdge,
+        WrappingMode::MirroredRepeat => Wrap::MirroredRepeat,
+    };
+    let mag_filter = match s.mag_filter() {
+        Some(MagFilter::Nearest) => Filter::Nearest,
+        Some(MagFilter::Linear) | None => Filter::Linear,
+    };
+    let (min_filter, mipmap_filter) = match s.min_filter() {
+        Some(MinFilter::Nearest) => (Filter::Nearest, None),
+        Some(MinFilter::Linear) => (Filter::Linear, None),
+        Some(MinFilter::NearestMipmapNearest) => (Filter::Nearest, Some(Filter::Nearest)),
+        Some(MinFilter::LinearMipmapNearest) => (Filter::Linear, Some(Filter::Nearest)),
+        Some(MinFilter::NearestMipmapLinear) => (Filter::Nearest, Some(Filter::Linear)),
+        Some(MinFilter::LinearMipmapLinear) | None => (Filter::Linear, Some(Filter::Linear)),
+    };
+    Sampler { wrap_u: wrap(s.wrap_s()), wrap_v: wrap(s.wrap_t()), mag_filter, min_filter, mipmap_filter }
 }
 
 fn node_name(node: &Node) -> String {

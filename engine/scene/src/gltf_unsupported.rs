@@ -1,15 +1,22 @@
 //! The parts of a glTF file Headlamp does not use, named so that `headlamp check` (and the log
 //! when a level loads) says what is ignored instead of rendering it differently in silence.
+//!
+//! Read and drawn, so not listed: base colour and emissive factors and textures, every
+//! sampler (wrap modes, nearest/linear, mipmap modes), `KHR_texture_transform`,
+//! `KHR_materials_emissive_strength`, `TEXCOORD_0`/`_1`, `COLOR_0`, alphaMode MASK, and
+//! doubleSided (single-sided materials have their back faces culled). Texture coordinate sets
+//! past 1 are warned about where a material asks for one (see the loader).
 
 use gltf::material::AlphaMode;
-use gltf::mesh::Semantic;
-use gltf::texture::{MagFilter, WrappingMode};
 use gltf::Document;
 
-/// Extensions the loader reads.
-const SUPPORTED_EXTENSIONS: &[&str] = &["KHR_lights_punctual"];
+use crate::BLEND_CUTOFF;
 
-/// One line per ignored feature, naming the material, texture or primitive that uses it.
+/// Extensions the loader reads.
+const SUPPORTED_EXTENSIONS: &[&str] =
+    &["KHR_lights_punctual", "KHR_texture_transform", "KHR_materials_emissive_strength"];
+
+/// One line per ignored feature, naming the material that uses it.
 pub(crate) fn unsupported_features(doc: &Document) -> Vec<String> {
     let mut out = Vec::new();
     for ext in doc.extensions_used().filter(|e| !SUPPORTED_EXTENSIONS.contains(e)) {
@@ -21,37 +28,23 @@ pub(crate) fn unsupported_features(doc: &Document) -> Vec<String> {
             (Some(i), None) => format!("material {i}"),
             (None, _) => continue,
         };
-        match m.alpha_mode() {
-            AlphaMode::Opaque => {}
-            AlphaMode::Mask => out.push(format!("{name}: alphaMode MASK is not supported; drawn opaque")),
-            AlphaMode::Blend => out.push(format!("{name}: alphaMode BLEND is not supported; drawn opaque")),
-        }
-        if m.emissive_texture().is_some() {
-            out.push(format!("{name}: emissive textures are not supported; the emissive factor is used alone"));
+        if m.alpha_mode() == AlphaMode::Blend {
+            out.push(format!(
+                "{name}: alphaMode BLEND (partial transparency) is not supported; drawn as MASK with \
+                 alphaCutoff {BLEND_CUTOFF}: alpha below it is a hole (for the camera, the lamp's shadows and \
+                 the GI), the rest opaque"
+            ));
         }
         if m.normal_texture().is_some() {
             out.push(format!("{name}: normal maps are not supported; the geometry's normals are used"));
         }
-    }
-    for t in doc.textures() {
-        let s = t.sampler();
-        let wraps = [s.wrap_s(), s.wrap_t()];
-        if wraps.iter().any(|w| *w != WrappingMode::Repeat) {
-            out.push(format!("texture {}: wrap modes {wraps:?} are not supported; it repeats", t.index()));
+        if m.occlusion_texture().is_some() {
+            out.push(format!("{name}: occlusion textures are not supported; ignored"));
         }
-        if s.mag_filter() == Some(MagFilter::Nearest) {
-            out.push(format!("texture {}: nearest filtering is not supported; it is filtered linearly", t.index()));
-        }
-    }
-    for mesh in doc.meshes() {
-        for prim in mesh.primitives() {
-            if prim.attributes().any(|(semantic, _)| semantic == Semantic::Colors(0)) {
-                out.push(format!(
-                    "mesh {} primitive {}: vertex colours (COLOR_0) are not supported; ignored",
-                    mesh.index(),
-                    prim.index()
-                ));
-            }
+        if m.pbr_metallic_roughness().metallic_roughness_texture().is_some() {
+            out.push(format!(
+                "{name}: metallic-roughness textures are not supported; the surface is diffuse (Lambertian)"
+            ));
         }
     }
     out

@@ -6,6 +6,12 @@
 //!   that exists but is malformed, or a `map_Kd` texture that cannot be loaded, is an error.
 //! - Kd/Ke are taken as linear RGB; `map_Kd` images as sRGB, like every [`Texture`].
 //! - Texture V is flipped (OBJ's origin is bottom-left, our textures' top-left).
+//! - A material without `Kd` has albedo 0.8 (1.0 under a `map_Kd`), and faces without a
+//!   material get [`Material::default`] (0.8 grey): the MTL format defines no default for
+//!   `Kd`, and 0.8 is OpenGL's default diffuse reflectance (unlike glTF, whose default
+//!   material is white: see [`Material::gltf_default`]). Textures repeat and are filtered
+//!   trilinearly; `d` (dissolve) is kept in the base colour's alpha but drawn opaque; every
+//!   face is drawn from both sides (OBJ has no notion of a single-sided face).
 //! - OBJ has no hierarchy: positions are used as written (metres, +Y up assumed).
 //!
 //! `tobj` can panic on some malformed input (an over-large negative face index, a colour with
@@ -25,7 +31,7 @@ use crate::geometry::{bake, RawTriangles};
 use crate::image_loader::{decode_texture, file_label};
 use crate::limits::MAX_TRIANGLES;
 use crate::sources::Sources;
-use crate::{Material, Mesh, Scene};
+use crate::{Material, Mesh, Scene, TextureRef};
 
 /// Loads an .obj file and the .mtl libraries it names.
 pub fn load_obj(path: &Path) -> Result<Scene, LoadError> {
@@ -110,7 +116,7 @@ pub(crate) fn load_obj_with(path: &Path, sources: &mut Sources) -> Result<Scene,
         if triangles > MAX_TRIANGLES {
             return Err(LoadError::too_large(path, format!("more than {MAX_TRIANGLES} triangles")));
         }
-        let raw = RawTriangles { positions, normals, uvs, indices };
+        let raw = RawTriangles { positions, normals, uvs, indices, ..RawTriangles::default() };
         let (vertices, indices) = bake(&raw, &Mat4::IDENTITY).map_err(|e| corrupt(format!("object '{name}': {e}")))?;
         let material = builder.material(m.material_id)?;
         builder.scene.meshes.push(Mesh { name, vertices, indices, material });
@@ -223,7 +229,7 @@ impl Builder<'_> {
         }
         let name = m.name.clone();
         let base_color_texture = match texture_name {
-            Some(Some(file)) => Some(self.texture(&mtl, &file)?),
+            Some(Some(file)) => Some(TextureRef::new(self.texture(&mtl, &file)?)),
             Some(None) => {
                 return Err(LoadError::new(
                     &mtl,
@@ -232,7 +238,8 @@ impl Builder<'_> {
             }
             None => None,
         };
-        Ok(Material { name, base_color: [rgb[0], rgb[1], rgb[2], alpha.min(1.0)], base_color_texture, emissive })
+        let base_color = [rgb[0], rgb[1], rgb[2], alpha.min(1.0)];
+        Ok(Material { name, base_color, base_color_texture, emissive, ..Material::default() })
     }
 
     /// Loads a `map_Kd` image named in `mtl`, relative to the .mtl's folder (falling back to

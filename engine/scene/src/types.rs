@@ -1,12 +1,32 @@
 use glam::{Mat4, Quat, Vec3};
 
-/// One vertex as the renderer uploads it: world-space position and unit normal, texture coordinate.
+/// One vertex as the renderer uploads it: world-space position and unit normal, two texture
+/// coordinate sets and a colour.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Vertex {
     pub position: [f32; 3],
     pub normal: [f32; 3],
+    /// Texture coordinate set 0 (glTF `TEXCOORD_0`), (0, 0) when the file has none.
     pub uv: [f32; 2],
+    /// Texture coordinate set 1 (glTF `TEXCOORD_1`), (0, 0) when the file has none.
+    pub uv1: [f32; 2],
+    /// Linear RGBA multiplying the material's base colour (glTF `COLOR_0`); white when absent.
+    pub color: [f32; 4],
+}
+
+impl Vertex {
+    /// A vertex with no second uv set and a white colour.
+    pub fn new(position: [f32; 3], normal: [f32; 3], uv: [f32; 2]) -> Self {
+        Self { position, normal, uv, uv1: [0.0; 2], color: [1.0; 4] }
+    }
+}
+
+impl Default for Vertex {
+    /// At the origin, no normal, uvs (0, 0), white.
+    fn default() -> Self {
+        Self::new([0.0; 3], [0.0; 3], [0.0; 2])
+    }
 }
 
 /// A triangle list in world space drawn with one material.
@@ -20,21 +40,171 @@ pub struct Mesh {
     pub material: usize,
 }
 
-/// A Lambertian material: the diffuse albedo is `base_color * texture` (both linear).
+/// How texture coordinates outside [0, 1] are mapped (glTF sampler `wrapS`/`wrapT`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Wrap {
+    #[default]
+    Repeat,
+    ClampToEdge,
+    MirroredRepeat,
+}
+
+/// Texel filtering: the nearest texel, or a linear blend of the nearest ones.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Filter {
+    Nearest,
+    #[default]
+    Linear,
+}
+
+/// How a texture is sampled (a glTF sampler). Every texture has a full mip chain on the GPU.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Sampler {
+    /// Along u (glTF `wrapS`).
+    pub wrap_u: Wrap,
+    /// Along v (glTF `wrapT`).
+    pub wrap_v: Wrap,
+    /// When a texel covers more than a pixel.
+    pub mag_filter: Filter,
+    /// Within a mip level when a texel covers less than a pixel.
+    pub min_filter: Filter,
+    /// Between mip levels; None samples the full-size image only (glTF `minFilter` NEAREST or
+    /// LINEAR, which have no mipmapping).
+    pub mipmap_filter: Option<Filter>,
+}
+
+impl Default for Sampler {
+    /// Repeat, trilinear: what glTF leaves to the implementation when a sampler says nothing.
+    fn default() -> Self {
+        Self {
+            wrap_u: Wrap::Repeat,
+            wrap_v: Wrap::Repeat,
+            mag_filter: Filter::Linear,
+            min_filter: Filter::Linear,
+            mipmap_filter: Some(Filter::Linear),
+        }
+    }
+}
+
+/// An affine map of texture coordinates (glTF `KHR_texture_transform`): uv' = T·R·S·uv, scale
+/// first, then a rotation by `rotation` radians (counter-clockwise in uv, i.e. the image turns
+/// clockwise), then the offset.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextureTransform {
+    pub offset: [f32; 2],
+    pub rotation: f32,
+    pub scale: [f32; 2],
+}
+
+impl TextureTransform {
+    pub const IDENTITY: Self = Self { offset: [0.0; 2], rotation: 0.0, scale: [1.0; 2] };
+
+    /// The map as the two rows of a 2×3 matrix acting on (u, v, 1).
+    pub fn matrix(&self) -> [[f32; 3]; 2] {
+        let (sin, cos) = self.rotation.sin_cos();
+        let [sx, sy] = self.scale;
+        let [ox, oy] = self.offset;
+        [[cos * sx, sin * sy, ox], [-sin * sx, cos * sy, oy]]
+    }
+
+    /// Maps one texture coordinate.
+    pub fn apply(&self, uv: [f32; 2]) -> [f32; 2] {
+        let [r0, r1] = self.matrix();
+        [r0[0] * uv[0] + r0[1] * uv[1] + r0[2], r1[0] * uv[0] + r1[1] * uv[1] + r1[2]]
+    }
+}
+
+impl Default for TextureTransform {
+    fn default() -> Self {
+        Self::IDENTITY
+    }
+}
+
+/// A material's use of a texture: which image, sampled how, at which transformed uv set.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextureRef {
+    /// Index into `Scene::textures`.
+    pub texture: usize,
+    pub sampler: Sampler,
+    /// The vertex uv set: 0 ([`Vertex::uv`]) or 1 ([`Vertex::uv1`]).
+    pub tex_coord: u32,
+    /// Applied to that uv set before sampling.
+    pub transform: TextureTransform,
+}
+
+impl TextureRef {
+    /// Texture `texture` with the default sampler, uv set 0, untransformed.
+    pub fn new(texture: usize) -> Self {
+        Self { texture, sampler: Sampler::default(), tex_coord: 0, transform: TextureTransform::IDENTITY }
+    }
+}
+
+/// How a material's base colour alpha is used (glTF `alphaMode`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum AlphaMode {
+    /// Alpha is ignored.
+    #[default]
+    Opaque,
+    /// Fragments with alpha below `cutoff` are not there: holes in every view, the lamp's
+    /// shadows and the GI included.
+    Mask { cutoff: f32 },
+    /// Partial transparency, which this deferred renderer does not have: drawn as
+    /// [`AlphaMode::Mask`] with cutoff [`BLEND_CUTOFF`] (see [`Material::alpha_cutoff`]).
+    Blend,
+}
+
+/// The cutoff an [`AlphaMode::Blend`] material is drawn with.
+pub const BLEND_CUTOFF: f32 = 0.5;
+
+/// A Lambertian material: the diffuse albedo is `base_color × texture × vertex colour` (all
+/// linear), the emitted radiance `emissive × emissive texture`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
     /// Linear RGBA factor.
     pub base_color: [f32; 4],
-    /// Index into `Scene::textures`, sampled with the vertex uv; stored sRGB-encoded.
-    pub base_color_texture: Option<usize>,
-    /// Emitted radiance, linear (W·sr⁻¹·m⁻²).
+    /// Multiplies `base_color`; the image is stored sRGB-encoded.
+    pub base_color_texture: Option<TextureRef>,
+    /// Emitted radiance, linear (W·sr⁻¹·m⁻²); glTF's `emissiveFactor` × `emissiveStrength`.
     pub emissive: [f32; 3],
+    /// Multiplies `emissive` (rgb); the image is stored sRGB-encoded.
+    pub emissive_texture: Option<TextureRef>,
+    pub alpha_mode: AlphaMode,
+    /// Drawn from both sides (the back side's normal reversed); false culls back faces (those
+    /// winding clockwise as seen), in every view.
+    pub double_sided: bool,
+}
+
+impl Material {
+    /// glTF 2.0's default material, for primitives without one: base colour 1 (white), no
+    /// emission, opaque, single-sided.
+    pub fn gltf_default() -> Self {
+        Self { name: "default".into(), base_color: [1.0; 4], double_sided: false, ..Self::default() }
+    }
+
+    /// The alpha below which a fragment is discarded; None for opaque materials.
+    pub fn alpha_cutoff(&self) -> Option<f32> {
+        match self.alpha_mode {
+            AlphaMode::Opaque => None,
+            AlphaMode::Mask { cutoff } => Some(cutoff),
+            AlphaMode::Blend => Some(BLEND_CUTOFF),
+        }
+    }
 }
 
 impl Default for Material {
+    /// The engine's (and OBJ's) default: albedo 0.8 grey, no emission, opaque, drawn from both
+    /// sides. glTF files use [`Material::gltf_default`] instead.
     fn default() -> Self {
-        Self { name: "default".into(), base_color: [0.8, 0.8, 0.8, 1.0], base_color_texture: None, emissive: [0.0; 3] }
+        Self {
+            name: "default".into(),
+            base_color: [0.8, 0.8, 0.8, 1.0],
+            base_color_texture: None,
+            emissive: [0.0; 3],
+            emissive_texture: None,
+            alpha_mode: AlphaMode::Opaque,
+            double_sided: true,
+        }
     }
 }
 

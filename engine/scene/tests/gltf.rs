@@ -1,11 +1,15 @@
 //! glTF loading: hierarchy, buffers (embedded, external, GLB), indices, normals, materials,
-//! textures, cameras, lights, extras.
+//! textures, cameras, lights, extras; vertex colours, the second uv set, samplers, alpha modes,
+//! sidedness, emissive textures and strength, texture transforms.
 
 mod common;
 
 use common::*;
 use glam::{Quat, Vec3};
-use scene::{load_gltf, load_scene_file, LightKind, Material, Projection};
+use scene::{
+    load_gltf, load_level, load_scene_file, AlphaMode, Filter, LightKind, Material, Projection, Sampler,
+    TextureTransform, Wrap,
+};
 use serde_json::json;
 
 const S: f32 = std::f32::consts::FRAC_1_SQRT_2;
@@ -140,7 +144,7 @@ fn primitives_without_material_share_one_default_material() {
     assert_eq!(scene.meshes.len(), 4, "two nodes instancing a two-primitive mesh");
     assert_eq!(scene.materials.len(), 2, "default added once, red once");
     let default = &scene.materials[scene.meshes[0].material];
-    assert_eq!(*default, Material::default());
+    assert_eq!(*default, Material::gltf_default());
     assert_eq!(scene.meshes[0].material, scene.meshes[2].material);
     let red = &scene.materials[scene.meshes[1].material];
     assert_eq!(red.name, "red");
@@ -353,12 +357,12 @@ fn base_color_textures_from_data_uri_and_buffer_view_deduped_by_image() {
     }));
     let scene = load_gltf(&write_json(&dir, "tex.gltf", &doc)).unwrap();
     assert_eq!(scene.textures.len(), 2, "image 0 used twice, decoded once");
-    let t0 = &scene.textures[scene.materials[0].base_color_texture.unwrap()];
+    let t0 = &scene.textures[scene.materials[0].base_color_texture.unwrap().texture];
     assert_eq!((t0.width, t0.height), (2, 1));
     assert_eq!(t0.rgba8, [255, 0, 0, 255, 0, 255, 0, 128]);
     assert_eq!(scene.materials[1].base_color_texture, scene.materials[0].base_color_texture);
     assert_eq!(scene.materials[1].base_color, [0.5, 0.5, 0.5, 1.0]);
-    let t1 = &scene.textures[scene.materials[2].base_color_texture.unwrap()];
+    let t1 = &scene.textures[scene.materials[2].base_color_texture.unwrap().texture];
     assert_eq!(t1.name, "blue");
     assert_eq!(t1.rgba8, [0, 0, 255, 255]);
 }
@@ -374,4 +378,289 @@ fn all_root_nodes_are_used_when_there_are_no_scenes() {
     }));
     let scene = load_gltf(&write_json(&dir, "n.gltf", &doc)).unwrap();
     assert_eq!(scene.meshes.len(), 3);
+}
+
+/// A 1×1 white PNG as a data URI: an image every material test below can point at.
+fn white_png_uri() -> String {
+    format!("data:image/png;base64,{}", base64(&png(1, 1, &[255; 4])))
+}
+
+fn le_bytes_u16(v: &[u16]) -> Vec<u8> {
+    v.iter().flat_map(|x| x.to_le_bytes()).collect()
+}
+
+#[test]
+fn vertex_colours_from_float_vec3_and_normalized_u8_u16_accessors_reach_every_vertex() {
+    let dir = TempDir::new("colours");
+    let mut bin = Bin::default();
+    let pos = bin.vec3(&TRI);
+    let nrm = bin.vec3(&[[0.0, 0.0, 1.0]; 3]);
+    let float3 = bin.vec3(&[[1.0, 0.5, 0.25], [0.0, 1.0, 0.0], [0.0, 0.0, 2.0]]);
+    let u8x4 = bin.typed(&[255, 0, 0, 255, 0, 51, 0, 102, 0, 0, 255, 0], 5121, 3, "VEC4", true);
+    let u16x4 =
+        bin.typed(&le_bytes_u16(&[65535, 0, 13107, 65535, 0, 65535, 0, 0, 0, 0, 0, 32768]), 5123, 3, "VEC4", true);
+    let u16x3 = bin.typed(&le_bytes_u16(&[0, 65535, 0, 65535, 65535, 65535, 0, 0, 0]), 5123, 3, "VEC3", true);
+    let doc = bin.gltf(json!({
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [
+            {"attributes": {"POSITION": pos, "NORMAL": nrm, "COLOR_0": float3}},
+            {"attributes": {"POSITION": pos, "NORMAL": nrm, "COLOR_0": u8x4}},
+            {"attributes": {"POSITION": pos, "NORMAL": nrm, "COLOR_0": u16x4}},
+            {"attributes": {"POSITION": pos, "NORMAL": nrm, "COLOR_0": u16x3}},
+            // No normals: flat shading un-shares the vertices, each keeps its colour.
+            {"attributes": {"POSITION": pos, "COLOR_0": float3}},
+            {"attributes": {"POSITION": pos, "NORMAL": nrm}}
+        ]}],
+    }));
+    let scene = load_gltf(&write_json(&dir, "c.gltf", &doc)).unwrap();
+    let colours = |m: usize| scene.meshes[m].vertices.iter().map(|v| v.color).collect::<Vec<_>>();
+    assert_eq!(colours(0), [[1.0, 0.5, 0.25, 1.0], [0.0, 1.0, 0.0, 1.0], [0.0, 0.0, 2.0, 1.0]], "float VEC3: alpha 1");
+    assert_eq!(colours(1), [[1.0, 0.0, 0.0, 1.0], [0.0, 0.2, 0.0, 0.4], [0.0, 0.0, 1.0, 0.0]], "u8 VEC4 / 255");
+    assert_eq!(colours(2), [[1.0, 0.0, 0.2, 1.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 32768.0 / 65535.0]]);
+    assert_eq!(colours(3), [[0.0, 1.0, 0.0, 1.0], [1.0, 1.0, 1.0, 1.0], [0.0, 0.0, 0.0, 1.0]], "u16 VEC3 / 65535");
+    assert_eq!(colours(4), colours(0));
+    assert_eq!(colours(5), [[1.0; 4]; 3], "no COLOR_0: white");
+
+    // Integer colours must be normalized, and colours non-negative.
+    let mut bin = Bin::default();
+    let pos = bin.vec3(&TRI);
+    let raw = bin.typed(&[255; 12], 5121, 3, "VEC4", false);
+    let negative = bin.vec3(&[[1.0, -0.5, 0.0]; 3]);
+    for (name, colour, needle) in
+        [("raw", raw, "expected float or normalized"), ("neg", negative, "vertex 0 has COLOR_0")]
+    {
+        let doc = single_primitive(&bin, json!({"attributes": {"POSITION": pos, "COLOR_0": colour}}));
+        let err = load_gltf(&write_json(&dir, &format!("{name}.gltf"), &doc)).unwrap_err().to_string();
+        assert!(err.contains("COLOR_0") && err.contains(needle), "{name}: {err}");
+    }
+}
+
+#[test]
+fn a_primitive_without_material_gets_the_specs_default_material() {
+    let dir = TempDir::new("specdefault");
+    let mut bin = Bin::default();
+    let pos = bin.vec3(&QUAD);
+    let doc = single_primitive(&bin, json!({"attributes": {"POSITION": pos}}));
+    let scene = load_gltf(&write_json(&dir, "d.gltf", &doc)).unwrap();
+    let m = &scene.materials[scene.meshes[0].material];
+    // glTF 2.0 §3.9.6: base colour 1, no emission, opaque, single-sided.
+    assert_eq!(m.base_color, [1.0; 4]);
+    assert_eq!((m.emissive, m.alpha_mode, m.double_sided), ([0.0; 3], AlphaMode::Opaque, false));
+    assert!(m.base_color_texture.is_none() && m.emissive_texture.is_none());
+    // OBJ keeps its own default (0.8 grey, both sides).
+    assert_eq!((Material::default().base_color, Material::default().double_sided), ([0.8, 0.8, 0.8, 1.0], true));
+}
+
+#[test]
+fn samplers_wrap_and_filter_modes_reach_each_texture_use() {
+    let dir = TempDir::new("samplers");
+    let mut bin = Bin::default();
+    let pos = bin.vec3(&TRI);
+    let uv = bin.vec2(&[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+    let (clamp, mirror, repeat) = (33071, 33648, 10497);
+    let (nearest, linear) = (9728, 9729);
+    let samplers = json!([
+        {"wrapS": clamp, "wrapT": mirror, "magFilter": nearest, "minFilter": nearest},
+        {"wrapS": mirror, "wrapT": repeat, "magFilter": linear, "minFilter": linear},
+        {"minFilter": 9984},
+        {"minFilter": 9985},
+        {"minFilter": 9986},
+        {"minFilter": 9987}
+    ]);
+    let mut textures = vec![json!({"source": 0})];
+    textures.extend((0..6).map(|s| json!({"source": 0, "sampler": s})));
+    let materials: Vec<_> =
+        (0..7).map(|t| json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": t}}})).collect();
+    let primitives: Vec<_> =
+        (0..7).map(|m| json!({"attributes": {"POSITION": pos, "TEXCOORD_0": uv}, "material": m})).collect();
+    let doc = bin.gltf(json!({
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": primitives}],
+        "materials": materials,
+        "textures": textures,
+        "samplers": samplers,
+        "images": [{"uri": white_png_uri()}],
+    }));
+    let scene = load_gltf(&write_json(&dir, "s.gltf", &doc)).unwrap();
+    assert_eq!(scene.textures.len(), 1, "one image, sampled seven ways");
+    let got: Vec<Sampler> = scene.materials.iter().map(|m| m.base_color_texture.unwrap().sampler).collect();
+    let (n, l) = (Filter::Nearest, Filter::Linear);
+    let sampler = |wrap_u, wrap_v, mag_filter, min_filter, mipmap_filter| Sampler {
+        wrap_u,
+        wrap_v,
+        mag_filter,
+        min_filter,
+        mipmap_filter,
+    };
+    let r = Wrap::Repeat;
+    assert_eq!(
+        got,
+        [
+            Sampler::default(),
+            sampler(Wrap::ClampToEdge, Wrap::MirroredRepeat, n, n, None),
+            sampler(Wrap::MirroredRepeat, r, l, l, None),
+            sampler(r, r, l, n, Some(n)),
+            sampler(r, r, l, l, Some(n)),
+            sampler(r, r, l, n, Some(l)),
+            sampler(r, r, l, l, Some(l)),
+        ]
+    );
+    assert_eq!(Sampler::default(), sampler(r, r, l, l, Some(l)), "no sampler: repeat, trilinear");
+}
+
+#[test]
+fn alpha_modes_cutoffs_and_sidedness() {
+    let dir = TempDir::new("alpha");
+    let mut bin = Bin::default();
+    let pos = bin.vec3(&TRI);
+    let materials = json!([
+        {},
+        {"alphaMode": "MASK"},
+        {"alphaMode": "MASK", "alphaCutoff": 0.25, "doubleSided": true},
+        {"alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 0.3]}}
+    ]);
+    let primitives: Vec<_> = (0..4).map(|m| json!({"attributes": {"POSITION": pos}, "material": m})).collect();
+    let doc = bin.gltf(json!({
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": primitives}],
+        "materials": materials,
+    }));
+    let scene = load_gltf(&write_json(&dir, "a.gltf", &doc)).unwrap();
+    let got: Vec<_> =
+        scene.materials.iter().map(|m| (m.alpha_mode, m.alpha_cutoff(), m.double_sided, m.base_color[3])).collect();
+    assert_eq!(
+        got,
+        [
+            (AlphaMode::Opaque, None, false, 1.0),
+            (AlphaMode::Mask { cutoff: 0.5 }, Some(0.5), false, 1.0),
+            (AlphaMode::Mask { cutoff: 0.25 }, Some(0.25), true, 1.0),
+            // BLEND is drawn as MASK at 0.5.
+            (AlphaMode::Blend, Some(0.5), false, 0.3),
+        ]
+    );
+}
+
+#[test]
+fn emissive_textures_and_strength_multiply_the_emissive_factor() {
+    let dir = TempDir::new("emissive");
+    let mut bin = Bin::default();
+    let pos = bin.vec3(&TRI);
+    let strength = |s: f32| json!({"KHR_materials_emissive_strength": {"emissiveStrength": s}});
+    let materials = json!([
+        {"emissiveFactor": [1.0, 0.5, 0.25], "emissiveTexture": {"index": 0}, "extensions": strength(4.0)},
+        {"emissiveFactor": [1.0, 1.0, 1.0]}
+    ]);
+    let doc = bin.gltf(json!({
+        "extensionsUsed": ["KHR_materials_emissive_strength"],
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [
+            {"attributes": {"POSITION": pos}, "material": 0},
+            {"attributes": {"POSITION": pos}, "material": 1}
+        ]}],
+        "materials": materials,
+        "textures": [{"source": 0}],
+        "images": [{"uri": white_png_uri()}],
+    }));
+    let path = write_json(&dir, "e.gltf", &doc);
+    let scene = load_gltf(&path).unwrap();
+    let (lit, plain) = (&scene.materials[0], &scene.materials[1]);
+    assert_eq!(lit.emissive, [4.0, 2.0, 1.0], "factor × emissiveStrength");
+    let texture = lit.emissive_texture.expect("the emissive texture is kept");
+    assert_eq!((texture.texture, texture.tex_coord, texture.transform), (0, 0, TextureTransform::IDENTITY));
+    assert!(lit.base_color_texture.is_none());
+    assert_eq!((plain.emissive, plain.emissive_texture), ([1.0; 3], None));
+
+    let mut doc = doc;
+    doc["materials"][0]["extensions"] = strength(-1.0);
+    let err = load_gltf(&write_json(&dir, "neg.gltf", &doc)).unwrap_err().to_string();
+    assert!(err.contains("material 0: KHR_materials_emissive_strength -1"), "{err}");
+}
+
+#[test]
+fn texture_transforms_and_the_second_uv_set_reach_the_material_and_vertices() {
+    let dir = TempDir::new("transform");
+    let mut bin = Bin::default();
+    let pos = bin.vec3(&TRI);
+    let uv0 = bin.vec2(&[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+    let uv1 = bin.vec2(&[[0.5, 0.5], [0.25, 0.5], [0.5, 0.75]]);
+    let transform =
+        json!({"offset": [0.5, 0.25], "rotation": std::f32::consts::FRAC_PI_2, "scale": [2.0, 3.0], "texCoord": 1});
+    let materials = json!([
+        {
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": transform}}},
+            "emissiveTexture": {"index": 0, "texCoord": 1}
+        },
+        // The extension without texCoord keeps the textureInfo's.
+        {"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1, "extensions": {"KHR_texture_transform": {"scale": [2.0, 2.0]}}}}}
+    ]);
+    let doc = bin.gltf(json!({
+        "extensionsUsed": ["KHR_texture_transform"],
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [
+            {"attributes": {"POSITION": pos, "TEXCOORD_0": uv0, "TEXCOORD_1": uv1}, "material": 0},
+            {"attributes": {"POSITION": pos, "TEXCOORD_0": uv0, "TEXCOORD_1": uv1}, "material": 1}
+        ]}],
+        "materials": materials,
+        "textures": [{"source": 0}],
+        "images": [{"uri": white_png_uri()}],
+    }));
+    let level = load_level(&write_json(&dir, "t.gltf", &doc)).unwrap();
+    assert_eq!(level.warnings, vec![], "everything here is read");
+    let scene = &level.scene;
+    let v = &scene.meshes[0].vertices;
+    assert_eq!([v[0].uv1, v[1].uv1, v[2].uv1], [[0.5, 0.5], [0.25, 0.5], [0.5, 0.75]]);
+    assert_eq!([v[0].uv, v[1].uv, v[2].uv], [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+
+    let base = scene.materials[0].base_color_texture.unwrap();
+    assert_eq!(base.tex_coord, 1, "the extension's texCoord overrides the textureInfo's");
+    assert_eq!(base.transform.offset, [0.5, 0.25]);
+    assert_eq!(base.transform.scale, [2.0, 3.0]);
+    assert!((base.transform.rotation - std::f32::consts::FRAC_PI_2).abs() < 1e-7);
+    // uv' = T·R·S·uv: scale (2, 3), rotate 90° (u' = v, v' = -u), then offset.
+    let apply = |uv| glam::Vec2::from(base.transform.apply(uv));
+    assert!((apply([1.0, 0.0]) - glam::Vec2::new(0.5, -1.75)).length() < 1e-6, "{}", apply([1.0, 0.0]));
+    assert!((apply([0.0, 1.0]) - glam::Vec2::new(3.5, 0.25)).length() < 1e-6, "{}", apply([0.0, 1.0]));
+    let emissive = scene.materials[0].emissive_texture.unwrap();
+    assert_eq!((emissive.tex_coord, emissive.transform), (1, TextureTransform::IDENTITY));
+    let second = scene.materials[1].base_color_texture.unwrap();
+    assert_eq!((second.tex_coord, second.transform.scale, second.transform.offset), (1, [2.0, 2.0], [0.0, 0.0]));
+}
+
+#[test]
+fn a_missing_second_uv_set_and_sets_past_1_are_warnings() {
+    let dir = TempDir::new("uvsets");
+    let mut bin = Bin::default();
+    let pos = bin.vec3(&TRI);
+    let uv0 = bin.vec2(&[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+    let doc = bin.gltf(json!({
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [
+            {"attributes": {"POSITION": pos, "TEXCOORD_0": uv0}, "material": 0},
+            {"attributes": {"POSITION": pos, "TEXCOORD_0": uv0}, "material": 1}
+        ]}],
+        "materials": [
+            {"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1}}},
+            {"emissiveTexture": {"index": 0, "texCoord": 2}}
+        ],
+        "textures": [{"source": 0}],
+        "images": [{"uri": white_png_uri()}],
+    }));
+    let level = load_level(&write_json(&dir, "u.gltf", &doc)).unwrap();
+    let lines: Vec<String> = level.warnings.iter().map(ToString::to_string).collect();
+    for needle in [
+        "mesh 0 primitive 0: its material's textures read TEXCOORD_1, which it lacks; TEXCOORD_0 is used",
+        "material 1: emissive texture uses TEXCOORD_2; only TEXCOORD_0 and TEXCOORD_1 are read",
+    ] {
+        assert!(lines.iter().any(|l| l.contains(needle)), "no '{needle}' in {lines:#?}");
+    }
+    assert_eq!(lines.len(), 2, "{lines:#?}");
+    let v = &level.scene.meshes[0].vertices;
+    assert!(v.iter().all(|v| v.uv1 == v.uv), "TEXCOORD_0 stands in for the missing TEXCOORD_1");
+    assert_eq!(level.scene.materials[1].emissive_texture.unwrap().tex_coord, 0);
 }

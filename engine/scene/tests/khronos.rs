@@ -4,10 +4,13 @@ mod common;
 
 use common::close;
 use glam::{Quat, Vec3};
-use scene::{load_gltf, load_level, Material, Projection};
+use scene::{load_gltf, load_level, Filter, Material, Projection, Sampler, Wrap};
 
 const BOX: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/testdata/khronos/Box.gltf");
 const CAMERAS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/testdata/khronos/Cameras.gltf");
+const BOX_VERTEX_COLORS: &str =
+    concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/testdata/khronos/BoxVertexColors.gltf");
+const BOX_TEXTURED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/testdata/khronos/BoxTextured.gltf");
 
 #[test]
 fn box_gltf() {
@@ -53,7 +56,7 @@ fn cameras_gltf() {
         close(v.normal, expected);
     }
     close(m.vertices[2].position, q * Vec3::Y);
-    assert_eq!(scene.materials[m.material], Material::default());
+    assert_eq!(scene.materials[m.material], Material::gltf_default());
 }
 
 #[test]
@@ -62,4 +65,37 @@ fn bare_gltf_file_is_a_level() {
     assert_eq!(level.name, "Box");
     assert!(level.root.is_none());
     assert_eq!(level.scene.triangle_count(), 12);
+}
+
+#[test]
+fn box_vertex_colors_keeps_its_colours_and_warns_about_nothing() {
+    let level = load_level(BOX_VERTEX_COLORS.as_ref()).unwrap();
+    assert_eq!(level.warnings, vec![]);
+    let scene = &level.scene;
+    let colours: Vec<[f32; 4]> = scene.meshes.iter().flat_map(|m| m.vertices.iter().map(|v| v.color)).collect();
+    let mut distinct: Vec<[u32; 4]> = colours.iter().map(|c| c.map(f32::to_bits)).collect();
+    distinct.sort();
+    distinct.dedup();
+    assert_eq!(distinct.len(), 7, "COLOR_0 read: the file's 7 distinct RGBA colours");
+    assert!(colours.iter().all(|c| c.iter().all(|v| (0.0..=1.0).contains(v))), "{colours:?}");
+    assert!(colours.iter().any(|c| c[0] > 0.99 && c[1] < 0.01), "a red corner");
+    // VEC4: the (near-zero) alphas are kept; the material is OPAQUE, so they are not used.
+    assert!(colours.iter().any(|c| c[3] < 0.01));
+    assert_eq!(scene.materials[scene.meshes[0].material].base_color, [0.8, 0.8, 0.8, 1.0]);
+}
+
+#[test]
+fn box_textured_keeps_its_sampler() {
+    let level = load_level(BOX_TEXTURED.as_ref()).unwrap();
+    assert_eq!(level.warnings, vec![]);
+    let texture = level.scene.materials[0].base_color_texture.unwrap();
+    // magFilter LINEAR, minFilter NEAREST_MIPMAP_LINEAR, REPEAT both ways.
+    let want = Sampler {
+        wrap_u: Wrap::Repeat,
+        wrap_v: Wrap::Repeat,
+        mag_filter: Filter::Linear,
+        min_filter: Filter::Nearest,
+        mipmap_filter: Some(Filter::Linear),
+    };
+    assert_eq!(texture.sampler, want);
 }

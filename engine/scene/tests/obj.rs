@@ -49,7 +49,7 @@ fn obj_with_mtl_colour_and_texture() {
     assert_eq!(mat.name, "wood");
     assert_eq!(mat.base_color, [0.5, 0.25, 0.125, 1.0]);
     assert_eq!(mat.emissive, [1.0, 2.0, 3.0]);
-    let tex = &scene.textures[mat.base_color_texture.unwrap()];
+    let tex = &scene.textures[mat.base_color_texture.unwrap().texture];
     assert_eq!((tex.width, tex.height), (2, 2));
     assert_eq!(tex.name, "wood.png");
     assert_eq!(&tex.rgba8[..4], &[10, 20, 30, 255]);

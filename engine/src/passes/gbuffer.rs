@@ -5,7 +5,7 @@ use super::HDR_FORMAT;
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::gpu_instances::INSTANCE_LAYOUT;
-use crate::gpu_scene::VERTEX_LAYOUT;
+use crate::gpu_scene::{self, GpuScene, VERTEX_LAYOUT};
 use crate::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
 
 pub const SHADER: &str = include_str!("../../../shaders/gbuffer.wgsl");
@@ -21,22 +21,28 @@ pub struct GBufferPass {
 }
 
 impl GBufferPass {
-    pub fn new(gpu: &Gpu, layouts: &CoreLayouts) -> Self {
+    pub fn new(gpu: &Gpu, layouts: &CoreLayouts, scene: &GpuScene) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "gbuffer", SHADER, &[]);
         let targets = [ALBEDO_FORMAT, HDR_FORMAT, POSITION_FORMAT, HDR_FORMAT];
-        Self { pipelines: ScenePipelines::new(device, "gbuffer", &module, layouts, &targets) }
+        let used = scene.variants_used();
+        Self { pipelines: ScenePipelines::new(device, "gbuffer", &module, layouts, &targets, used) }
     }
 }
 
-/// The two pipelines rasterising a view: the level's meshes (`vs_main`/`fs_main`, vertex
-/// layout of `scene::Vertex`, material in group 1) and the frame's instances
-/// (`vs_instance`/`fs_instance`, the same vertices plus [`INSTANCE_LAYOUT`], no group 1), into
-/// the same colour `targets` and reversed-Z depth buffer (cleared to 0, nearer is greater).
-/// No culling: files come with either winding and single-sided walls, and each shader turns
-/// normals towards its viewer.
+/// The pipelines rasterising a view: the level's meshes (`vs_main` and `fs_main`, or
+/// `fs_masked` for alpha-tested materials; vertex layout of `scene::Vertex`, material in
+/// group 1) and the frame's instances (`vs_instance`/`fs_instance`, the same vertices plus
+/// [`INSTANCE_LAYOUT`], no group 1), into the same colour `targets` and reversed-Z depth
+/// buffer (cleared to 0, nearer is greater).
+///
+/// Single-sided materials (glTF's default) have their back faces culled, in the camera's and
+/// the lamp's view alike, so the lamp shines through a single-sided wall from behind as the
+/// camera sees through it. Double-sided materials (OBJ's, the engine's default) and instances
+/// are drawn from both sides, and each shader turns their normals towards its viewer.
 pub struct ScenePipelines {
-    scene: wgpu::RenderPipeline,
+    /// One per [`gpu_scene::variant`], built for the variants the scene uses.
+    scene: [Option<wgpu::RenderPipeline>; gpu_scene::VARIANTS],
     instances: wgpu::RenderPipeline,
 }
 
@@ -47,21 +53,28 @@ impl ScenePipelines {
         module: &wgpu::ShaderModule,
         layouts: &CoreLayouts,
         targets: &[wgpu::TextureFormat],
+        used: [bool; gpu_scene::VARIANTS],
     ) -> Self {
-        let scene = raster_pipeline(
-            device,
-            label,
-            module,
-            ("vs_main", "fs_main"),
-            &[Some(&layouts.globals), Some(&layouts.material)],
-            &[Some(VERTEX_LAYOUT)],
-            targets,
-        );
+        let scene = std::array::from_fn(|v| {
+            used[v].then(|| {
+                let masked = gpu_scene::variant_masked(v);
+                let culls = gpu_scene::variant_culls(v);
+                raster_pipeline(
+                    device,
+                    &format!("{label}{}{}", if masked { " masked" } else { "" }, if culls { " culled" } else { "" }),
+                    module,
+                    ("vs_main", if masked { "fs_masked" } else { "fs_main" }, culls.then_some(wgpu::Face::Back)),
+                    &[Some(&layouts.globals), Some(&layouts.material)],
+                    &[Some(VERTEX_LAYOUT)],
+                    targets,
+                )
+            })
+        });
         let instances = raster_pipeline(
             device,
             &format!("{label} instances"),
             module,
-            ("vs_instance", "fs_instance"),
+            ("vs_instance", "fs_instance", None),
             &[Some(&layouts.globals)],
             &[Some(VERTEX_LAYOUT), Some(INSTANCE_LAYOUT)],
             targets,
@@ -74,7 +87,8 @@ fn raster_pipeline(
     device: &wgpu::Device,
     label: &str,
     module: &wgpu::ShaderModule,
-    (vertex, fragment): (&str, &str),
+    // Entry points, and the faces culled.
+    (vertex, fragment, cull_mode): (&str, &str, Option<wgpu::Face>),
     groups: &[Option<&wgpu::BindGroupLayout>],
     buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
     targets: &[wgpu::TextureFormat],
@@ -94,7 +108,8 @@ fn raster_pipeline(
             compilation_options: Default::default(),
             buffers,
         },
-        primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+        // Front faces wind counter-clockwise (glTF's rule, kept by the loaders' baking).
+        primitive: wgpu::PrimitiveState { cull_mode, ..Default::default() },
         depth_stencil: Some(wgpu::DepthStencilState {
             format: DEPTH_FORMAT,
             depth_write_enabled: Some(true),
@@ -144,9 +159,8 @@ pub fn draw_scene(ctx: &mut PassContext<'_>, label: &str, pipelines: &ScenePipel
         occlusion_query_set: None,
         multiview_mask: None,
     });
-    pass.set_pipeline(&pipelines.scene);
     pass.set_bind_group(0, ctx.frame.globals, &[]);
-    ctx.frame.scene.draw_all(&mut pass);
+    ctx.frame.scene.draw_all(&mut pass, &pipelines.scene);
     if !ctx.frame.instances.is_empty() {
         pass.set_pipeline(&pipelines.instances);
         ctx.frame.instances.draw_all(&mut pass);

@@ -16,6 +16,7 @@ use super::names::*;
 use super::HDR_FORMAT;
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
+use crate::gpu_scene::GpuScene;
 use crate::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
 
 pub const SHADER: &str = include_str!("../../../shaders/lamp_view.wgsl");
@@ -41,14 +42,16 @@ pub struct LampViewPass {
 }
 
 impl LampViewPass {
-    pub fn new(gpu: &Gpu, layouts: &CoreLayouts) -> Self {
+    pub fn new(gpu: &Gpu, layouts: &CoreLayouts, scene: &GpuScene) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "lamp view", SHADER, &[]);
-        // Same rasterisation as the camera's G-buffer, instances included (no culling:
-        // single-sided walls must still block the lamp from either side; reversed Z). No
-        // rasteriser depth bias: the shadow test applies its own, in metres.
+        // Same rasterisation as the camera's G-buffer, instances included: the same alpha
+        // cut-outs (so shadows and the GI's reflected flux see the holes), the same culling of
+        // single-sided materials' back faces (double-sided ones block the lamp from either
+        // side); reversed Z. No rasteriser depth bias: the shadow test applies its own, in metres.
         let targets = [LAMP_ALBEDO_FORMAT, LAMP_NORMAL_FORMAT, LAMP_POSITION_FORMAT];
-        Self { pipelines: super::gbuffer::ScenePipelines::new(device, "lamp view", &module, layouts, &targets) }
+        let used = scene.variants_used();
+        Self { pipelines: super::gbuffer::ScenePipelines::new(device, "lamp view", &module, layouts, &targets, used) }
     }
 }
 

@@ -21,8 +21,7 @@ pub fn gpu() -> Gpu {
 /// Appends a quad (corners counter-clockwise seen from the side its normal points to).
 fn quad(scene: &mut Scene, corners: [Vec3; 4], material: usize) {
     let n = (corners[1] - corners[0]).cross(corners[2] - corners[0]).normalize();
-    let vertices =
-        corners.iter().map(|p| Vertex { position: p.to_array(), normal: n.to_array(), uv: [0.0; 2] }).collect();
+    let vertices = corners.iter().map(|p| Vertex::new(p.to_array(), n.to_array(), [0.0; 2])).collect();
     scene.meshes.push(Mesh {
         name: format!("quad{}", scene.meshes.len()),
         vertices,

@@ -111,6 +111,11 @@ impl Bin {
         let bytes: Vec<u8> = v.iter().flat_map(|f| f.to_le_bytes()).collect();
         self.push(&bytes, 5125, v.len(), "SCALAR", json!({}))
     }
+    /// Any accessor over `bytes` (`component` a glTF componentType, `ty` "VEC3" etc.).
+    pub fn typed(&mut self, bytes: &[u8], component: u32, count: usize, ty: &str, normalized: bool) -> usize {
+        let extra = if normalized { json!({"normalized": true}) } else { json!({}) };
+        self.push(bytes, component, count, ty, extra)
+    }
     /// Raw bytes as a bufferView only (for images); returns the view index.
     pub fn view(&mut self, bytes: &[u8]) -> usize {
         while !self.data.len().is_multiple_of(4) {
