@@ -197,4 +197,24 @@ fn replays_do_what_their_scripts_say() {
     assert!(end.player.alive() && end.lamp.on && end.lamp.attached);
     let shots = s.windows(2).filter(|w| w[1].weapon.flash == game::sim::weapon::FLASH_TICKS).count();
     assert!(shots >= 12, "the crawlers went down to gunfire: {shots} shots");
+
+    // The Gallery: won at the way out at the back of the vault, two of its four crawlers shot
+    // on the way there, the player unhurt.
+    let s = states(&replay_files::open("gallery_win"));
+    let end = s.last().unwrap();
+    assert_eq!(end.outcome, game::sim::Outcome::Won);
+    assert_eq!(end.enemies_left(), 2, "won by the exit, not by putting every crawler down");
+    let p = end.player.body.position;
+    assert!(p.x > 5.4 && p.z < -10.8, "in the vault: {p}");
+    assert_eq!(end.player.health, game::sim::player::MAX_HEALTH);
+
+    // The Hall: up the stairs onto a balcony (the storey above the crawlers' walk grid) and
+    // back down, every crawler put down, all of them still on the ground floor.
+    let s = states(&replay_files::open("hall_win"));
+    assert!(s.iter().any(|s| s.player.body.position.y > 3.7), "the player went up to a balcony");
+    let end = s.last().unwrap();
+    assert_eq!(end.outcome, game::sim::Outcome::Won);
+    assert_eq!(end.enemies_left(), 0);
+    assert!(end.player.body.position.y < 0.1, "back on the floor");
+    assert!(end.enemies.iter().all(|e| e.body.position.y.abs() < 0.1), "the crawlers kept to the ground floor");
 }

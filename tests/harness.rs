@@ -15,13 +15,23 @@ pub mod replay_files;
 pub use game::golden::{flip_error, MEAN_FLIP_TOLERANCE};
 pub const UPDATE_ENV: &str = "HEADLAMP_UPDATE_GOLDENS";
 
-pub fn cellar_path() -> PathBuf {
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../levels/cellar"))
+/// The folder of the shipped level `id` (`cellar`, `gallery`, `hall`).
+pub fn level_path(id: &str) -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../levels")).join(id)
 }
 
-/// The shipped level, loaded.
+/// The shipped level `id`, loaded.
+pub fn load_level(id: &str) -> engine::scene::Level {
+    engine::scene::load_level(&level_path(id)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+pub fn cellar_path() -> PathBuf {
+    level_path("cellar")
+}
+
+/// The default shipped level, loaded.
 pub fn cellar() -> engine::scene::Level {
-    engine::scene::load_level(&cellar_path()).unwrap_or_else(|e| panic!("{e}"))
+    load_level("cellar")
 }
 
 pub fn goldens_dir() -> PathBuf {

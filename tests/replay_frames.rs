@@ -8,8 +8,17 @@ use headlamp_tests::{check_golden, replay_files};
 /// Snapshot size: small, because lavapipe renders the GI on the CPU.
 const SIZE: (u32, u32) = (320, 180);
 
-/// Each replay and the ticks whose frames are checked (the frame after that many ticks).
+/// Each replay and the ticks whose frames are checked (the frame after that many ticks), in the
+/// order of their scripts' names.
 const SHOTS: &[(&str, &[u32])] = &[
+    // The Gallery won: the blue room's crawler seen through its door from the atrium; the first
+    // shot's muzzle flash lighting the blue room; the vault's guard in its doorway; at the way
+    // out, won.
+    ("gallery_win", &[232, 235, 372, 560]),
+    // The Hall won: on the west balcony at the top of the stairs; a shot from the balcony at the
+    // nave's crawler below; a shot across the nave at the west arcade's crawler; the crypt's
+    // guard in its doorway in the blue wall.
+    ("hall_win", &[393, 490, 1075, 1430]),
     // In the corridor; near the top of the jump; crouched; standing again.
     ("jumping", &[60, 88, 161, 201]),
     // The moment the lamp is put down; backing out; in the corridor, the room lit by the lamp
@@ -21,7 +30,7 @@ const SHOTS: &[(&str, &[u32])] = &[
     // The spawn view; backed against the south wall; pressed into the east wall; backed away
     // from that corner, looking at it.
     ("walls", &[0, 60, 120, 190]),
-    // The demo level won: the first shot's muzzle flash lighting the red/green room; that
+    // The Cellar won: the first shot's muzzle flash lighting the red/green room; that
     // crawler down; the hall's crawler down in the corridor; the storeroom's guard down, won.
     ("win", &[171, 189, 451, 772]),
 ];

@@ -1,57 +1,8 @@
-//! Geometry primitives: axis-aligned boxes, ramps, materials and the per-material mesh buffers
-//! they are merged into.
+//! Geometry primitives: axis-aligned boxes, ramps and the per-material mesh buffers they are
+//! merged into.
 //!
 //! Every face is emitted with its own four (or three) vertices so normals are flat; faces are wound
 //! counter-clockwise seen from outside, i.e. their winding agrees with the outward normal.
-
-/// The level's materials. The declaration order is the order meshes/materials appear in the glTF.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Material {
-    White,
-    Red,
-    Green,
-    Blue,
-    Yellow,
-    Concrete,
-    Wood,
-}
-
-impl Material {
-    pub const ALL: [Material; 7] = [
-        Material::White,
-        Material::Red,
-        Material::Green,
-        Material::Blue,
-        Material::Yellow,
-        Material::Concrete,
-        Material::Wood,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Material::White => "white",
-            Material::Red => "red",
-            Material::Green => "green",
-            Material::Blue => "blue",
-            Material::Yellow => "yellow",
-            Material::Concrete => "concrete",
-            Material::Wood => "wood",
-        }
-    }
-
-    /// Linear diffuse albedo. Kept at or below 0.85 so multi-bounce GI stays well behaved.
-    pub fn albedo(self) -> [f64; 3] {
-        match self {
-            Material::White => [0.8, 0.8, 0.8],
-            Material::Red => [0.8, 0.1, 0.08],
-            Material::Green => [0.1, 0.7, 0.15],
-            Material::Blue => [0.1, 0.2, 0.8],
-            Material::Yellow => [0.85, 0.75, 0.1],
-            Material::Concrete => [0.45, 0.45, 0.45],
-            Material::Wood => [0.55, 0.35, 0.18],
-        }
-    }
-}
 
 /// An axis-aligned box in metres.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -297,6 +248,15 @@ impl MeshBuffers {
         self.add_face_outward(&[h1b, l1b, h1t], center); // side
     }
 
+    /// Divides every texture coordinate by `metres` (how many metres one repeat of the texture
+    /// covers); a power of two divides exactly.
+    pub fn scale_uvs(&mut self, metres: f64) {
+        let s = (1.0 / metres) as f32;
+        for uv in &mut self.uvs {
+            *uv = [uv[0] * s, uv[1] * s];
+        }
+    }
+
     /// Component-wise bounds of the positions, as stored (f32).
     pub fn position_bounds(&self) -> ([f32; 3], [f32; 3]) {
         let mut lo = [f32::INFINITY; 3];
@@ -402,12 +362,5 @@ mod tests {
         assert_eq!(b.ray_hit([0.0, 0.0, 0.0], [-1.0, 0.0, 0.0]), None);
         assert_eq!(b.ray_hit([0.0, 2.0, 0.0], [1.0, 0.0, 0.0]), None);
         assert_eq!(b.ray_hit([1.5, 0.0, 0.0], [1.0, 0.0, 0.0]), Some(0.5));
-    }
-
-    #[test]
-    fn albedos_are_matte_and_below_085() {
-        for m in Material::ALL {
-            assert!(m.albedo().iter().all(|&c| (0.0..=0.85).contains(&c)), "{m:?}");
-        }
     }
 }

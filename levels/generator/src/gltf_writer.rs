@@ -3,9 +3,15 @@
 //! Layout of the buffer: for each mesh in material order, tightly packed POSITION (VEC3 f32),
 //! NORMAL (VEC3 f32), TEXCOORD_0 (VEC2 f32) and u32 indices, each in its own bufferView. Every
 //! block is a multiple of 4 bytes long, so every bufferView starts 4-byte aligned.
+//!
+//! A textured material's base colour texture is an external PNG beside the scene file
+//! (`images[].uri`), sampled with repeat wrapping and trilinear filtering; a level without
+//! textured materials writes no `images`, `samplers` or `textures` at all.
 
-use crate::geometry::{Material, MeshBuffers};
+use crate::geometry::MeshBuffers;
 use crate::layout::{Level, LightKind};
+use crate::materials::Material;
+use crate::textures::TextureKind;
 use serde_json::{json, Map, Value};
 
 const FLOAT: u32 = 5126;
@@ -14,9 +20,15 @@ const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 const TRIANGLES: u32 = 4;
 
+const LINEAR: u32 = 9729;
+const LINEAR_MIPMAP_LINEAR: u32 = 9987;
+const REPEAT: u32 = 10497;
+
 pub struct GltfOutput {
     pub json: String,
     pub bin: Vec<u8>,
+    /// The textures the materials use, in the order of `images`.
+    pub textures: Vec<TextureKind>,
 }
 
 /// An f32 as a JSON number with its shortest round-tripping decimal form (so 0.1f32 is written as
@@ -92,6 +104,7 @@ pub fn write(level: &Level, meshes: &[(Material, MeshBuffers)], bin_uri: &str) -
     let mut gltf_meshes = Vec::new();
     let mut materials = Vec::new();
     let mut nodes = Vec::new();
+    let mut textures: Vec<TextureKind> = Vec::new();
 
     for (material, mesh) in meshes.iter().filter(|(_, m)| !m.is_empty()) {
         let position = b.floats(&mesh.positions, "VEC3");
@@ -110,14 +123,19 @@ pub fn write(level: &Level, meshes: &[(Material, MeshBuffers)], bin_uri: &str) -
         }));
 
         let [r, g, bl] = material.albedo();
-        materials.push(json!({
-            "name": material.name(),
-            "pbrMetallicRoughness": {
-                "baseColorFactor": [r, g, bl, 1.0],
-                "metallicFactor": 0.0,
-                "roughnessFactor": 1.0,
-            },
-        }));
+        let mut pbr = json!({
+            "baseColorFactor": [r, g, bl, 1.0],
+            "metallicFactor": 0.0,
+            "roughnessFactor": 1.0,
+        });
+        if let Some((kind, _)) = material.texture() {
+            let index = textures.iter().position(|&t| t == kind).unwrap_or_else(|| {
+                textures.push(kind);
+                textures.len() - 1
+            });
+            pbr["baseColorTexture"] = json!({ "index": index });
+        }
+        materials.push(json!({ "name": material.name(), "pbrMetallicRoughness": pbr }));
         gltf_meshes.push(json!({
             "name": material.name(),
             "primitives": [{
@@ -167,7 +185,7 @@ pub fn write(level: &Level, meshes: &[(Material, MeshBuffers)], bin_uri: &str) -
         let mut node = Map::new();
         node.insert("name".into(), json!(l.name));
         node.insert("extensions".into(), json!({ "KHR_lights_punctual": { "light": i } }));
-        transform(&mut node, l.position, 0.0, l.pitch_deg);
+        transform(&mut node, l.position, l.yaw_deg, l.pitch_deg);
         nodes.push(Value::Object(node));
     }
 
@@ -180,7 +198,7 @@ pub fn write(level: &Level, meshes: &[(Material, MeshBuffers)], bin_uri: &str) -
         nodes.push(Value::Object(node));
     }
 
-    let doc = json!({
+    let mut doc = json!({
         "asset": { "version": "2.0", "generator": "levelgen (Headlamp)" },
         "extensionsUsed": ["KHR_lights_punctual"],
         "extensions": { "KHR_lights_punctual": { "lights": lights } },
@@ -194,9 +212,22 @@ pub fn write(level: &Level, meshes: &[(Material, MeshBuffers)], bin_uri: &str) -
         "bufferViews": b.views,
         "accessors": b.accessors,
     });
+    if !textures.is_empty() {
+        let images: Vec<Value> = textures.iter().map(|t| json!({ "name": t.name(), "uri": t.file_name() })).collect();
+        let gltf_textures: Vec<Value> =
+            (0..textures.len()).map(|i| json!({ "name": textures[i].name(), "sampler": 0, "source": i })).collect();
+        doc["images"] = json!(images);
+        doc["samplers"] = json!([{
+            "magFilter": LINEAR,
+            "minFilter": LINEAR_MIPMAP_LINEAR,
+            "wrapS": REPEAT,
+            "wrapT": REPEAT,
+        }]);
+        doc["textures"] = json!(gltf_textures);
+    }
     let mut json = serde_json::to_string_pretty(&doc).expect("JSON serialisation");
     json.push('\n');
-    GltfOutput { json, bin: b.bin }
+    GltfOutput { json, bin: b.bin, textures }
 }
 
 #[cfg(test)]
@@ -214,7 +245,13 @@ mod tests {
 
     #[test]
     fn gltf_structure_is_consistent_with_the_buffer() {
-        let out = generate(&crate::layout::cellar());
+        for level in crate::all_levels() {
+            check_structure(&level);
+        }
+    }
+
+    fn check_structure(level: &Level) {
+        let out = generate(level);
         let doc: Value = serde_json::from_str(&out.gltf).unwrap();
         let bin = &out.bin;
         assert_eq!(doc["asset"]["version"], "2.0");
@@ -320,14 +357,54 @@ mod tests {
         let overview = nodes.iter().find(|n| n["name"] == "overview").unwrap();
         assert_eq!(u(&overview["camera"]), 0);
         assert_eq!(doc["cameras"][0]["type"], "perspective");
-        for l in lights {
-            assert!(l["intensity"].as_f64().unwrap() <= 0.5, "lights must stay dim");
+        if level.id == "cellar" {
+            for l in lights {
+                assert!(l["intensity"].as_f64().unwrap() <= 0.5, "the Cellar's lights must stay dim");
+            }
         }
         assert_eq!(doc["extensionsUsed"], json!(["KHR_lights_punctual"]));
         for key in ["spawn", "pickup", "enemy"] {
             assert!(nodes.iter().any(|n| n["extras"].get(key).is_some()), "no {key} marker");
         }
         assert_eq!(nodes.iter().filter(|n| n["extras"]["spawn"] == "player").count(), 1);
+    }
+
+    /// Textured materials name their PNG through one texture each, all with the one repeating
+    /// sampler; untextured levels (the Cellar) carry no texture arrays at all.
+    #[test]
+    fn textured_materials_reference_their_pngs() {
+        for level in crate::all_levels() {
+            let out = generate(&level);
+            let doc: Value = serde_json::from_str(&out.gltf).unwrap();
+            let materials = doc["materials"].as_array().unwrap();
+            let textured: Vec<&Value> =
+                materials.iter().filter(|m| m["pbrMetallicRoughness"].get("baseColorTexture").is_some()).collect();
+            if textured.is_empty() {
+                for key in ["images", "samplers", "textures"] {
+                    assert!(doc.get(key).is_none(), "{}: {key}", level.id);
+                }
+                continue;
+            }
+            let images = doc["images"].as_array().unwrap();
+            let textures = doc["textures"].as_array().unwrap();
+            assert_eq!(images.len(), out.textures.len());
+            assert!(out.textures.iter().all(|(_, png)| png.starts_with(b"\x89PNG")));
+            assert_eq!(textures.len(), images.len());
+            let sampler = &doc["samplers"][0];
+            assert_eq!((u(&sampler["wrapS"]), u(&sampler["wrapT"])), (10497, 10497));
+            for (i, t) in textures.iter().enumerate() {
+                assert_eq!((u(&t["sampler"]), u(&t["source"])), (0, i));
+                assert_eq!(images[i]["uri"], out.textures[i].0.as_str());
+            }
+            for (m, _) in &crate::build_meshes(&level) {
+                let written = materials.iter().find(|w| w["name"] == m.name()).unwrap();
+                let index = written["pbrMetallicRoughness"]["baseColorTexture"]["index"].as_u64();
+                match m.texture() {
+                    Some((kind, _)) => assert_eq!(out.textures[index.unwrap() as usize].0, kind.file_name(), "{m:?}"),
+                    None => assert_eq!(index, None, "{m:?}"),
+                }
+            }
+        }
     }
 
     #[test]

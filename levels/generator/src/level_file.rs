@@ -1,13 +1,24 @@
 //! Writes `level.toml`, the level's settings for the game: which scene to load, exposure, where
-//! the player spawns, the headlamp, the gameplay rules. Only the keys the game reads are written.
+//! the player spawns, the headlamp, extra lights, the gameplay rules. Only the keys the game
+//! reads are written.
 
-use crate::layout::Level;
+use crate::layout::{Level, Light, LightKind};
 use std::fmt::Write;
 
 /// A TOML float (always with a decimal point or exponent).
 fn float(x: f64) -> String {
     assert!(x.is_finite());
     format!("{x:?}")
+}
+
+/// Rounded to 1e-6 (so 35° through radians and back is written 35.0) with -0.0 as 0.0.
+fn clean(x: f64) -> f64 {
+    let r = (x * 1e6).round() / 1e6;
+    if r == 0.0 {
+        0.0
+    } else {
+        r
+    }
 }
 
 fn array(v: &[f64]) -> String {
@@ -28,6 +39,35 @@ fn srgb(c: f64) -> f64 {
     }
 }
 
+/// The unit vector a light points along: its node's -Z turned by its yaw, then pitch.
+pub fn light_direction(l: &Light) -> [f64; 3] {
+    let (sy, cy) = l.yaw_deg.to_radians().sin_cos();
+    let (sp, cp) = l.pitch_deg.to_radians().sin_cos();
+    [-sy * cp, sp, -cy * cp]
+}
+
+/// One `[[lights]]` table.
+fn light_table(l: &Light) -> String {
+    let mut out = format!("\n[[lights]]\nname = \"{}\"\n", l.name);
+    let kind = match l.kind {
+        LightKind::Point => "point",
+        LightKind::Spot { .. } => "spot",
+    };
+    let _ = writeln!(out, "kind = \"{kind}\"");
+    let _ = writeln!(out, "position = {}", array(&l.position.map(clean)));
+    if let LightKind::Spot { .. } = l.kind {
+        let _ = writeln!(out, "direction = {}", array(&light_direction(l).map(clean)));
+    }
+    let _ = writeln!(out, "color = {}", array(&l.color));
+    let _ = writeln!(out, "intensity = {}", float(l.intensity));
+    let _ = writeln!(out, "range = {}", float(l.range));
+    if let LightKind::Spot { inner, outer } = l.kind {
+        let _ = writeln!(out, "inner_deg = {}", float(clean(inner.to_degrees())));
+        let _ = writeln!(out, "outer_deg = {}", float(clean(outer.to_degrees())));
+    }
+    out
+}
+
 pub fn level_toml(level: &Level, scene_file: &str) -> String {
     let s = &level.spawn;
     let h = &level.headlamp;
@@ -43,7 +83,7 @@ name = \"{name}\"
 description = \"{description}\"
 scene = \"{scene_file}\"
 # A white wall 4 m in front of the headlamp has radiance 0.8 * power / (pi * 4^2) = {wall_4m:.3};
-# times the exposure, through the ACES tonemap, it displays as sRGB {shown:.2} (mid-grey).
+# times the exposure, through the ACES tonemap, it displays as sRGB {shown:.2} ({grey}).
 exposure = {exposure}
 
 [spawn]
@@ -58,7 +98,7 @@ profile = \"{profile}\"
 inner_deg = {inner}
 outer_deg = {outer}
 color = {color}
-
+{lights}
 # Gameplay rules; the pickups, crawlers, patrol routes and the exit are marker nodes in the scene.
 [game]
 battery_seconds = {battery}
@@ -67,6 +107,11 @@ objective = \"{objective}\"
         name = level.name,
         description = level.description,
         exposure = float(level.exposure),
+        grey = match shown {
+            s if s < 0.45 => "dark grey",
+            s if s <= 0.65 => "mid-grey",
+            _ => "light grey",
+        },
         position = array(&s.position),
         yaw = float(s.yaw_deg),
         pitch = float(s.pitch_deg),
@@ -76,6 +121,19 @@ objective = \"{objective}\"
         inner = float(h.inner_deg),
         outer = float(h.outer_deg),
         color = array(&h.color),
+        lights = if level.toml_lights.is_empty() {
+            String::new()
+        } else {
+            let mut text = String::from(
+                "\n# Lights of the level's own (KHR_lights_punctual, added to the scene file's): move, aim, recolour\n\
+                 # or add them here, no code or Blender needed. intensity is W/sr; range in metres; the cone's\n\
+                 # half-angles in degrees. They light directly (no shadows); only the headlamp's light bounces.\n",
+            );
+            for l in &level.toml_lights {
+                text.push_str(&light_table(l));
+            }
+            text
+        },
         battery = float(level.game.battery_seconds),
         objective = level.game.objective,
     );
@@ -88,7 +146,7 @@ mod tests {
 
     #[test]
     fn only_known_keys_are_written() {
-        let text = level_toml(&crate::layout::cellar(), "scene.gltf");
+        let text = level_toml(&crate::cellar::cellar(), "scene.gltf");
         let mut table = String::new();
         let mut keys = Vec::new();
         for line in text.lines().map(str::trim) {
@@ -105,6 +163,7 @@ mod tests {
         }
         let expected = [
             "name",
+            "description",
             "scene",
             "exposure",
             "spawn.position",
@@ -124,11 +183,62 @@ mod tests {
         assert!(text.contains("\"\nscene = \"scene.gltf\"\n"), "{text}");
         assert!(text.contains("position = [0.0, 0.0, 3.8]\n"));
         assert!(text.contains("profile = \"spot\"\n"));
+        assert!(!text.contains("[[lights]]"), "the Cellar's lights are in its scene file");
+    }
+
+    /// Every level's level.toml parses as TOML with the values of its layout, its `[[lights]]`
+    /// included (with the keys the game's level.toml schema knows).
+    #[test]
+    fn every_level_toml_parses_with_its_values() {
+        for level in crate::all_levels() {
+            let text = level_toml(&level, "scene.gltf");
+            let table: toml::Table = text.parse().unwrap_or_else(|e| panic!("{}: {e}\n{text}", level.id));
+            assert_eq!(table["name"].as_str(), Some(level.name));
+            let description = table["description"].as_str().unwrap();
+            assert_eq!(description, level.description);
+            assert!(!description.is_empty() && !description.contains('\n'));
+            assert_eq!(table["exposure"].as_float(), Some(level.exposure));
+            assert_eq!(table["game"]["objective"].as_str(), Some(level.game.objective));
+            let lights = table.get("lights").and_then(|l| l.as_array()).map_or(&[][..], |l| &l[..]);
+            assert_eq!(lights.len(), level.toml_lights.len(), "{}", level.id);
+            for (written, light) in lights.iter().zip(&level.toml_lights) {
+                let keys: Vec<&str> = written.as_table().unwrap().keys().map(String::as_str).collect();
+                let known =
+                    ["name", "kind", "position", "direction", "color", "intensity", "range", "inner_deg", "outer_deg"];
+                assert!(keys.iter().all(|k| known.contains(k)), "{keys:?}");
+                assert_eq!(written["name"].as_str(), Some(light.name));
+                assert_eq!(written["intensity"].as_float(), Some(light.intensity));
+                let position: Vec<f64> =
+                    written["position"].as_array().unwrap().iter().map(|v| v.as_float().unwrap()).collect();
+                assert_eq!(position, light.position);
+                if let LightKind::Spot { inner, outer } = light.kind {
+                    assert_eq!(written["kind"].as_str(), Some("spot"));
+                    let d: Vec<f64> =
+                        written["direction"].as_array().unwrap().iter().map(|v| v.as_float().unwrap()).collect();
+                    let expected = light_direction(light);
+                    assert!((0..3).all(|i| (d[i] - expected[i]).abs() < 1e-6), "{d:?}");
+                    let outer_deg = written["outer_deg"].as_float().unwrap();
+                    assert!((outer_deg - outer.to_degrees()).abs() < 1e-6);
+                    assert!(written["inner_deg"].as_float().unwrap() < outer_deg && inner < outer);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn light_directions_follow_yaw_and_pitch() {
+        let mut l = crate::gallery::gallery().toml_lights[0].clone();
+        (l.yaw_deg, l.pitch_deg) = (0.0, -90.0);
+        assert_eq!(light_direction(&l).map(clean), [0.0, -1.0, 0.0]);
+        (l.yaw_deg, l.pitch_deg) = (90.0, 0.0);
+        assert_eq!(light_direction(&l).map(clean), [-1.0, 0.0, 0.0], "yaw 90 turns left, to -X");
+        (l.yaw_deg, l.pitch_deg) = (0.0, 0.0);
+        assert_eq!(light_direction(&l).map(clean), [0.0, 0.0, -1.0], "the node's -Z");
     }
 
     #[test]
     fn a_white_wall_4m_away_displays_mid_grey() {
-        let level = crate::layout::cellar();
+        let level = crate::cellar::cellar();
         let radiance = 0.8 * level.headlamp.power / (std::f64::consts::PI * 16.0);
         let shown = srgb(aces(radiance * level.exposure));
         assert!((0.45..=0.65).contains(&shown), "displays as sRGB {shown}");

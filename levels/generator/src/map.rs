@@ -1,7 +1,8 @@
 //! A top-down ASCII map of a level (north = -Z at the top), for eyeballing the layout.
 
-use crate::geometry::{Aabb, Material};
+use crate::geometry::Aabb;
 use crate::layout::{Level, Shape, Solid, SolidKind};
+use crate::materials::Material;
 
 /// Metres per map cell; each cell is printed two characters wide so cells look square.
 const CELL: f64 = 0.5;
@@ -9,13 +10,14 @@ const SUB: usize = 5;
 
 fn wall_char(m: Material) -> char {
     match m {
-        Material::White => '#',
-        Material::Red => 'R',
-        Material::Green => 'G',
-        Material::Blue => 'B',
-        Material::Yellow => 'Y',
-        Material::Concrete => '%',
-        Material::Wood => 'w',
+        Material::White | Material::Plaster => '#',
+        Material::Red | Material::RedPlaster => 'R',
+        Material::Green | Material::GreenTile => 'G',
+        Material::Blue | Material::BluePlaster => 'B',
+        Material::Yellow | Material::YellowBrick => 'Y',
+        Material::Concrete | Material::Stone | Material::FloorTile => '%',
+        Material::Wood | Material::Planks | Material::DarkPlanks => 'w',
+        Material::Brick => 'b',
     }
 }
 
@@ -140,7 +142,7 @@ pub fn ascii_map(level: &Level, solids: &[Solid]) -> String {
         out.push('\n');
     }
     out.push_str(
-        "walls: # white  R red  G green  B blue  Y yellow  % concrete   (gaps = doorways 2.2 m high)\n\
+        "walls: # white  R red  G green  B blue  Y yellow  % concrete/stone  b brick   (gaps = doorways)\n\
          props: x crate/block  P pillar  = dais/step  / ramp     @ spawn  $ battery  ! crawler  * light\n",
     );
     out
