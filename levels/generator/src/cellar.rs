@@ -166,15 +166,7 @@ pub fn cellar() -> Level {
         },
     ];
 
-    let camera = Camera {
-        name: "overview",
-        position: [spawn.position[0], spawn.position[1] + EYE_HEIGHT, spawn.position[2]],
-        yaw_deg: spawn.yaw_deg,
-        pitch_deg: 0.0,
-        yfov: 1.05,
-        znear: 0.05,
-        zfar: 100.0,
-    };
+    let camera = Camera::overview(&spawn);
 
     Level {
         id: "cellar",

@@ -235,15 +235,8 @@ pub fn hall() -> Level {
         lamp("crypt_lamp", [0.0, 2.9, -41.4], [0.65, 0.8, 1.0], 0.5, 4.0),
     ];
 
-    let camera = Camera {
-        name: "overview",
-        position: [spawn.position[0], spawn.position[1] + EYE_HEIGHT, spawn.position[2]],
-        yaw_deg: spawn.yaw_deg,
-        pitch_deg: 0.0,
-        yfov: 1.05,
-        znear: 0.05,
-        zfar: 150.0,
-    };
+    // The hall is longer than the default far plane reaches comfortably.
+    let camera = Camera { zfar: 150.0, ..Camera::overview(&spawn) };
 
     Level {
         id: "hall",

@@ -150,6 +150,21 @@ pub struct Camera {
     pub zfar: f64,
 }
 
+impl Camera {
+    /// The file's own view: from the spawn's eyes, level, the way the spawn faces.
+    pub fn overview(spawn: &Spawn) -> Self {
+        Camera {
+            name: "overview",
+            position: [spawn.position[0], spawn.position[1] + EYE_HEIGHT, spawn.position[2]],
+            yaw_deg: spawn.yaw_deg,
+            pitch_deg: 0.0,
+            yfov: 1.05,
+            znear: 0.05,
+            zfar: 100.0,
+        }
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct Spawn {
     /// Feet position.
