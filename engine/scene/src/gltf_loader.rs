@@ -79,6 +79,14 @@ pub(crate) fn load_gltf_with(path: &Path, sources: &mut Sources) -> Result<Scene
 /// Every primitive attribute must name an existing accessor: `gltf-json` 1.4's validator
 /// looks the POSITION accessor up without a bounds check and would panic.
 fn check_attribute_indices(root: &gltf::json::Root) -> Result<(), String> {
+    // The crate's `image.source()` unwraps these (both are spec violations).
+    for (i, image) in root.images.iter().enumerate() {
+        match (&image.uri, &image.buffer_view, &image.mime_type) {
+            (None, None, _) => return Err(format!("images[{i}] has neither a uri nor a bufferView")),
+            (None, Some(_), None) => return Err(format!("images[{i}] is in a bufferView but has no mimeType")),
+            _ => {}
+        }
+    }
     for (m, mesh) in root.meshes.iter().enumerate() {
         for (p, prim) in mesh.primitives.iter().enumerate() {
             for (semantic, index) in &prim.attributes {
@@ -487,6 +495,7 @@ impl Builder<'_> {
                 }
             }
         };
+        self.sources.hold_texture(self.path, &texture)?;
         self.scene.textures.push(texture);
         let t = self.scene.textures.len() - 1;
         self.textures.insert(idx, t);

@@ -15,6 +15,8 @@ pub const MAX_VERTICES: usize = 3 * MAX_TRIANGLES;
 /// Widest or tallest texture accepted, in pixels: the 2D texture size every wgpu device
 /// supports (its default limit), so a texture that loads can always be uploaded.
 pub const MAX_TEXTURE_SIZE: u32 = 8192;
+/// Most bytes of decoded textures one scene may hold (RGBA8): four of the largest, 8192².
+pub const MAX_SCENE_TEXTURE_BYTES: u64 = 1 << 30;
 /// Widest or tallest headlamp profile image, in pixels. The profile is kept as floats in
 /// several copies on its way to the GPU (16 bytes a pixel each), and the lamp's own spot
 /// profile is 256² texels: a larger picture only costs memory.

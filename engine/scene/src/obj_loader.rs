@@ -265,6 +265,7 @@ impl Builder<'_> {
         }
         let bytes = self.sources.read(&file)?;
         let texture = decode_texture(&bytes, &file, "", file_label(&file))?;
+        self.sources.hold_texture(&file, &texture)?;
         self.scene.textures.push(texture);
         let t = self.scene.textures.len() - 1;
         self.textures.insert(file, t);

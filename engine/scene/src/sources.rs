@@ -7,7 +7,7 @@
 use std::path::{Component, Path, PathBuf};
 
 use crate::error::{LoadError, LoadErrorKind, LoadWarning, TextPos};
-use crate::limits::{read_file, MAX_FILE_BYTES};
+use crate::limits::{read_file, MAX_FILE_BYTES, MAX_SCENE_TEXTURE_BYTES};
 use crate::zip_level::ZipLevel;
 
 /// 64-bit FNV-1a: tiny, dependency-free and stable across platforms and Rust versions, which
@@ -43,6 +43,8 @@ pub(crate) struct Sources {
     files: Vec<PathBuf>,
     hash: Fnv1a,
     warnings: Vec<LoadWarning>,
+    /// Bytes of the textures decoded so far, against [`MAX_SCENE_TEXTURE_BYTES`].
+    texture_bytes: u64,
 }
 
 impl Sources {
@@ -125,9 +127,47 @@ impl Sources {
         std::mem::take(&mut self.warnings)
     }
 
+    /// Counts a decoded texture against the scene's budget: a scene of many large textures is
+    /// refused at the one that passes it, naming it, instead of exhausting memory.
+    pub fn hold_texture(&mut self, path: &Path, texture: &crate::Texture) -> Result<(), LoadError> {
+        self.texture_bytes += texture.rgba8.len() as u64;
+        if self.texture_bytes > MAX_SCENE_TEXTURE_BYTES {
+            return Err(LoadError::too_large(
+                path,
+                format!(
+                    "{} ({}x{}) takes the scene's textures past {MAX_SCENE_TEXTURE_BYTES} bytes",
+                    texture.name, texture.width, texture.height
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// Every file the load read, in order (for a zipped level, the archive): what to watch
     /// for edits.
     pub fn files(&self) -> &[PathBuf] {
         &self.files
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn textures_past_the_scenes_budget_are_refused_naming_the_one_that_passes_it() {
+        let mut sources = Sources::default();
+        // Zeroed allocations are not touched: four of the largest textures cost nothing here.
+        let largest = |name: &str| crate::Texture {
+            name: name.into(),
+            width: 8192,
+            height: 8192,
+            rgba8: vec![0; 8192 * 8192 * 4],
+        };
+        for i in 0..4 {
+            sources.hold_texture(Path::new("scene.gltf"), &largest(&format!("t{i}"))).unwrap();
+        }
+        let e = sources.hold_texture(Path::new("scene.gltf"), &largest("t4")).unwrap_err().to_string();
+        assert!(e.starts_with("scene.gltf: too large: t4 (8192x8192) takes the scene's textures past"), "{e}");
     }
 }

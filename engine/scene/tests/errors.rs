@@ -158,6 +158,20 @@ fn bad_references_and_structure() {
     doc["buffers"][0]["uri"] = json!("data:application/octet-stream;base64,@@@@");
     expect_err(load_gltf(&write_json(&dir, "b64.gltf", &doc)), "b64.gltf", &["base64"]);
 
+    // Images the gltf crate would unwrap: no source at all, a bufferView without a mimeType.
+    for (tag, image, needle) in [
+        ("nosource", json!({}), "images[0] has neither a uri nor a bufferView"),
+        ("nomime", json!({"bufferView": 0}), "images[0] is in a bufferView but has no mimeType"),
+    ] {
+        let (_, mut doc) = tri_doc(None);
+        doc["images"] = json!([image]);
+        doc["textures"] = json!([{"source": 0}]);
+        doc["materials"] = json!([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]);
+        doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+        let file = format!("{tag}.gltf");
+        expect_err(load_gltf(&write_json(&dir, &file, &doc)), &file, &["corrupt glTF", needle]);
+    }
+
     // Unsupported required extension.
     let (_, mut doc) = tri_doc(None);
     doc["extensionsRequired"] = json!(["KHR_draco_mesh_compression"]);
