@@ -10,6 +10,7 @@ use std::path::PathBuf;
 
 pub use engine;
 
+pub mod fuzz_targets;
 pub mod replay_files;
 
 pub use game::golden::{flip_error, MEAN_FLIP_TOLERANCE};

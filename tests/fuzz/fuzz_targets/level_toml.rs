@@ -1,0 +1,7 @@
+#![no_main]
+// Any bytes as a level_toml: an error or an accepted file, never a panic or a hang.
+use headlamp_tests::fuzz_targets::{run, Target};
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| {
+    let _ = run(Target::LevelToml, data);
+});
