@@ -170,10 +170,10 @@ fn embedded(level: &Path, glb: bool) -> Vec<u8> {
     buffer.as_object_mut().expect("a buffer object").remove("uri");
     let mut json = serde_json::to_vec(&doc).expect("JSON");
     let mut bin = bin;
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();
