@@ -53,6 +53,10 @@ impl HeadlessTarget {
     /// past the device's memory or limits) is an error naming the size, not a panic.
     pub fn render(&self, gpu: &Gpu, renderer: &mut Renderer, view: &ViewState) -> anyhow::Result<RenderedImage> {
         let (w, h) = (self.texture.width(), self.texture.height());
+        let largest = gpu.device.limits().max_texture_dimension_2d;
+        if w.max(h) > largest {
+            anyhow::bail!("a {w}x{h} frame is larger than this GPU's largest texture ({largest} pixels across)");
+        }
         gpu.checked(&format!("rendering a {w}x{h} frame"), || renderer.render(gpu, view, &self.texture, &self.view))??;
         Ok(self.read_back(gpu))
     }

@@ -272,10 +272,11 @@ pub fn parse_setting(s: &str) -> Result<(String, String), String> {
 
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT (e.g. 1280x720)"))?;
-    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|&n| (1..=16384).contains(&n));
+    let largest = scene::limits::MAX_OUTPUT_SIZE;
+    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|&n| (1..=largest).contains(&n));
     match (parse(w), parse(h)) {
         (Some(w), Some(h)) => Ok((w, h)),
-        _ => Err(format!("'{s}': width and height must be whole numbers from 1 to 16384")),
+        _ => Err(format!("'{s}': width and height must be whole numbers from 1 to {largest}")),
     }
 }
 

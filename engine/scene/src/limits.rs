@@ -21,6 +21,8 @@ pub const MAX_SCENE_TEXTURE_BYTES: u64 = 1 << 30;
 /// several copies on its way to the GPU (16 bytes a pixel each), and the lamp's own spot
 /// profile is 256² texels: a larger picture only costs memory.
 pub const MAX_PROFILE_SIZE: u32 = 2048;
+/// Widest or tallest frame the command line renders (`--size`); the device may allow less.
+pub const MAX_OUTPUT_SIZE: u32 = 16384;
 /// Largest single file of a level read (glTF buffer, image, OBJ...), in bytes.
 pub const MAX_FILE_BYTES: u64 = 4 << 30;
 /// Largest text file read: level.toml, the config, an input script.
