@@ -41,6 +41,7 @@ echo "t_s,rss_mib"
 start=$SECONDS
 next_sample=0
 samples=()
+counts=()
 while (( SECONDS - start < seconds )); do
     alive || { echo "soak: the game died after $((SECONDS - start)) s:" >&2; tail -5 "$work/play.log" >&2; exit 1; }
     t=$((SECONDS - start))
@@ -48,7 +49,9 @@ while (( SECONDS - start < seconds )); do
         m=$(rss); echo "$t,$m"; samples+=("$t:$m"); next_sample=$((next_sample + 15))
     fi
     focus
-    case $((RANDOM % 14)) in
+    action=$((RANDOM % 14))
+    counts[$action]=$(( ${counts[$action]:-0} + 1 ))
+    case $action in
         0|1|2) key=$(printf 'w\na\ns\nd' | shuf -n1); xdotool keydown "$key"; sleep "0.$((RANDOM % 9 + 1))"; xdotool keyup "$key" ;;
         3|4) xdotool mousemove_relative -- $((RANDOM % 201 - 100)) $((RANDOM % 41 - 20)) ;;
         5) xdotool click 1 ;;
@@ -68,5 +71,7 @@ errors=$(grep -cE "ERROR|panicked" "$work/play.log" || true)
 first=${samples[0]#*:}; last=${samples[-1]#*:}
 settled=$first; for s in "${samples[@]}"; do (( ${s%%:*} >= 120 )) && { settled=${s#*:}; break; }; done
 max=0; for s in "${samples[@]}"; do (( ${s#*:} > max )) && max=${s#*:}; done
+c() { echo "${counts[$1]:-0}"; }
+echo "soak: input: $(( $(c 0) + $(c 1) + $(c 2) )) walks, $(( $(c 3) + $(c 4) )) looks, $(c 5) shots, $(c 6) lamp/reload/jump/crouch keys, $(c 7) pauses, $(c 8) restarts, $(c 9) F5 reloads, $(c 10) level.toml edits, $(c 11) resizes to 1x1, $(c 12) F3, $(c 13) clicks on Play"
 echo "soak: ${seconds} s, ${#samples[@]} samples; RSS ${first} MiB at start, ${settled} MiB at 2 min, ${last} MiB at the end, ${max} MiB at most; ${errors} errors logged"
 (( errors == 0 )) || { grep -E "ERROR|panicked" "$work/play.log" | head -5 >&2; exit 1; }
