@@ -84,6 +84,10 @@ pub fn run(level_path: &Path, levels_dirs: &[PathBuf]) -> anyhow::Result<()> {
     app.first_run = config_path.as_ref().is_some_and(|p| !p.exists());
     app.config_path = config_path;
     app.menus = Menus::new();
+    // A first start (or the first since the setting came) asks for the brightness first.
+    if !app.config.calibrated {
+        app.menus.calibrate();
+    }
     app.watch_level(level_path);
     // Loading and checking every level takes a moment: the menu says so meanwhile.
     let dirs = crate::level_list::level_dirs(levels_dirs);
@@ -308,6 +312,7 @@ impl GameWindow {
             sampler.bindings = self.config.bindings.clone();
         }
         self.view.view.camera.projection = CameraProjection::Perspective { fov_y: self.config.fov_deg.to_radians() };
+        self.view.comfort = crate::view::Comfort::of(&self.config);
         // Dynamic resolution keeps its scale while its target and ceiling stay (a GI setting
         // changed); a new target or ceiling starts it again from the ceiling.
         let fresh = DynamicResolution::new(self.config.target_fps, self.config.render_scale);
@@ -394,6 +399,7 @@ impl GameWindow {
             message: self.messages.current().map(str::to_owned),
             gun: s.player.alive().then(|| self.gun_pose()),
             hit: self.messages.hit(),
+            crosshair_scale: self.config.crosshair_scale,
         }
     }
 
@@ -602,6 +608,11 @@ impl WindowApp for GameWindow {
     }
 
     fn ui(&mut self, ctx: &egui::Context) {
+        // The HUD's size; menus keep theirs, so any size can be undone from them.
+        let zoom = if self.menus.is_open() { 1.0 } else { self.config.hud_scale };
+        if ctx.zoom_factor() != zoom {
+            ctx.set_zoom_factor(zoom);
+        }
         if self.menus.in_game() {
             hud::show(ctx, &self.hud());
         }

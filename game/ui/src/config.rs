@@ -39,6 +39,16 @@ pub struct Config {
     pub show_fps: bool,
     pub bindings: KeyBindings,
     pub gi: GiSettings,
+    /// Picture brightness in stops (exposure × 2^brightness), in [`Config::BRIGHTNESS_RANGE`].
+    pub brightness: f32,
+    /// The brightness calibration screen has been through (it opens on a first start).
+    pub calibrated: bool,
+    /// Tames what flashes: the low-battery flicker and the muzzle flash.
+    pub reduce_flashing: bool,
+    /// Size of the HUD (the menus keep theirs), in [`Config::HUD_SCALE_RANGE`].
+    pub hud_scale: f32,
+    /// Size of the crosshair, in [`Config::CROSSHAIR_SCALE_RANGE`].
+    pub crosshair_scale: f32,
 }
 
 impl Default for Config {
@@ -55,6 +65,11 @@ impl Default for Config {
             show_fps: false,
             bindings: KeyBindings::default(),
             gi: GiSettings::default(),
+            brightness: 0.0,
+            calibrated: false,
+            reduce_flashing: false,
+            hud_scale: 1.0,
+            crosshair_scale: 1.0,
         }
     }
 }
@@ -66,6 +81,17 @@ impl Config {
     pub const FOV_RANGE: RangeInclusive<f32> = 50.0..=110.0;
     pub const RENDER_SCALE_RANGE: RangeInclusive<f32> = 0.25..=1.0;
     pub const TARGET_FPS_RANGE: RangeInclusive<f32> = 10.0..=144.0;
+    pub const BRIGHTNESS_RANGE: RangeInclusive<f32> = -2.0..=2.0;
+    pub const HUD_SCALE_RANGE: RangeInclusive<f32> = 0.75..=2.0;
+    pub const CROSSHAIR_SCALE_RANGE: RangeInclusive<f32> = 0.5..=3.0;
+    /// How much of a flash `reduce_flashing` leaves: the muzzle flash's light, and the depth of
+    /// the low-battery flicker.
+    pub const REDUCED_FLASH: f32 = 0.25;
+
+    /// The multiplier brightness applies to the level's exposure.
+    pub fn exposure_scale(&self) -> f32 {
+        self.brightness.exp2()
+    }
 
     /// Radians of view rotation per pixel of mouse motion.
     pub fn radians_per_pixel(&self) -> f32 {

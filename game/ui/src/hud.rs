@@ -30,6 +30,8 @@ pub struct HudInfo {
     pub gun: Option<crate::GunPose>,
     /// 0..=1: a shot just hit a crawler (a marker round the crosshair, fading).
     pub hit: f32,
+    /// The crosshair's size (`Config::crosshair_scale`).
+    pub crosshair_scale: f32,
 }
 
 impl Default for HudInfo {
@@ -52,6 +54,7 @@ impl Default for HudInfo {
             message: None,
             gun: Some(crate::GunPose::default()),
             hit: 0.0,
+            crosshair_scale: 1.0,
         }
     }
 }
@@ -76,7 +79,7 @@ pub fn show(ctx: &egui::Context, hud: &HudInfo) {
         ctx.layer_painter(egui::LayerId::background()).extend(crate::gun::shapes(screen, pose));
     }
     hurt_flash(&painter, screen, hud.hurt);
-    crosshair(&painter, screen.center());
+    crosshair(&painter, screen.center(), hud.crosshair_scale);
     hit_marker(&painter, screen.center(), hud.hit);
     area("hud vitals", Align2::LEFT_BOTTOM, egui::vec2(MARGIN, -MARGIN)).show(ctx, |ui| {
         plate().show(ui, |ui| {
@@ -203,13 +206,15 @@ fn bar(ui: &mut egui::Ui, fraction: f32, color: Color32) {
 }
 
 /// A small cross with a gap, white over a dark outline so it shows on bright and dark walls.
-fn crosshair(painter: &egui::Painter, centre: Pos2) {
-    const GAP: f32 = 4.0;
-    const LENGTH: f32 = 7.0;
+fn crosshair(painter: &egui::Painter, centre: Pos2, scale: f32) {
+    let (gap, length) = (4.0 * scale, 7.0 * scale);
     let arms = [egui::vec2(1.0, 0.0), egui::vec2(-1.0, 0.0), egui::vec2(0.0, 1.0), egui::vec2(0.0, -1.0)];
     for (width, color) in [(3.5, Color32::from_black_alpha(170)), (1.5, Color32::from_white_alpha(230))] {
         for dir in arms {
-            painter.line_segment([centre + dir * GAP, centre + dir * (GAP + LENGTH)], Stroke::new(width, color));
+            painter.line_segment(
+                [centre + dir * gap, centre + dir * (gap + length)],
+                Stroke::new(width * scale.max(1.0), color),
+            );
         }
     }
 }
@@ -265,6 +270,28 @@ mod tests {
         }
         let output = output.unwrap();
         (texts(&output).into_iter().map(|(t, _)| t).collect(), output)
+    }
+
+    #[test]
+    fn the_crosshair_grows_with_its_scale() {
+        // How far the crosshair's lines reach from the screen's centre.
+        let reach = |scale: f32| {
+            let (_, output) = shown(&HudInfo { crosshair_scale: scale, gun: None, ..HudInfo::default() });
+            let centre = egui::pos2(SCREEN.x / 2.0, SCREEN.y / 2.0);
+            output
+                .shapes
+                .iter()
+                .filter_map(|c| match &c.shape {
+                    egui::Shape::LineSegment { points, .. } => {
+                        Some(points.iter().map(|p| p.distance(centre)).fold(0.0, f32::max))
+                    }
+                    _ => None,
+                })
+                .filter(|d| *d < 100.0)
+                .fold(0.0, f32::max)
+        };
+        assert!((reach(1.0) - 11.0).abs() < 0.5, "{}", reach(1.0));
+        assert!((reach(2.5) - 27.5).abs() < 0.5, "{}", reach(2.5));
     }
 
     #[test]

@@ -3,6 +3,7 @@
 //! [`MenuAction`] it returns; it switches screens itself with [`Menus::pause`],
 //! [`Menus::game_over`] and [`Menus::playing`].
 
+mod calibration_screen;
 mod levels_screen;
 mod settings_screen;
 #[cfg(test)]
@@ -25,6 +26,8 @@ pub enum Screen {
     Settings,
     /// The level menu, from the main menu.
     Levels,
+    /// Brightness calibration, on a first start; then the main menu.
+    Calibration,
     GameOver {
         won: bool,
     },
@@ -96,7 +99,7 @@ impl Menus {
     /// main menu, nor in Settings opened from it.
     pub fn in_game(&self) -> bool {
         match self.screen {
-            Screen::MainMenu | Screen::Levels => false,
+            Screen::MainMenu | Screen::Levels | Screen::Calibration => false,
             Screen::Settings => self.settings_from != Screen::MainMenu,
             _ => true,
         }
@@ -118,6 +121,11 @@ impl Menus {
     pub fn game_over(&mut self, won: bool) {
         self.screen = Screen::GameOver { won };
         self.ignore_esc = true;
+    }
+
+    /// The brightness screen (a first start opens it before the main menu).
+    pub fn calibrate(&mut self) {
+        self.screen = Screen::Calibration;
     }
 
     /// Back to the main menu (e.g. a level picked from the level menu failed to load).
@@ -188,6 +196,13 @@ impl Menus {
                 }
                 None => None,
             },
+            Screen::Calibration => {
+                let before = config.clone();
+                if calibration_screen::show(ctx, config) {
+                    self.screen = Screen::MainMenu;
+                }
+                (*config != before).then_some(MenuAction::ConfigChanged)
+            }
             Screen::GameOver { won } => self.game_over_menu(ctx, won),
         };
         match action {

@@ -20,7 +20,8 @@ pub(super) struct ParseError {
     pub problem: String,
 }
 
-const SECTIONS: [&str; 4] = ["controls", "video", "bindings", "gi"];
+const SECTIONS: [&str; 5] = ["controls", "video", "comfort", "bindings", "gi"];
+const COMFORT: [&str; 5] = ["brightness", "calibrated", "reduce_flashing", "hud_scale", "crosshair_scale"];
 const CONTROLS: [&str; 3] = ["sensitivity", "invert_y", "fov_deg"];
 const VIDEO: [&str; 5] = ["render_scale", "dynamic_resolution", "target_fps", "vsync", "show_fps"];
 
@@ -52,6 +53,18 @@ pub(super) fn write(c: &Config) -> String {
          vsync = {}\n\
          show_fps = {}\n\
          \n\
+         [comfort]\n\
+         # picture brightness in stops, 0 = as the level is lit ({bright})\n\
+         brightness = {:?}\n\
+         # the brightness screen has been shown (false: it opens at the next start)\n\
+         calibrated = {}\n\
+         # tame the low-battery flicker and the muzzle flash\n\
+         reduce_flashing = {}\n\
+         # size of the HUD ({ui})\n\
+         hud_scale = {:?}\n\
+         # size of the crosshair ({cross})\n\
+         crosshair_scale = {:?}\n\
+         \n\
          [bindings]\n\
          # Up to {SLOTS} keys or buttons per action, e.g. KeyW, Digit1, F5, Space, Tab, ShiftLeft,\n\
          # ControlLeft, AltLeft, ArrowUp, Comma, Numpad0, MouseLeft, MouseRight, MouseMiddle.\n",
@@ -63,11 +76,19 @@ pub(super) fn write(c: &Config) -> String {
         c.target_fps,
         c.vsync,
         c.show_fps,
+        c.brightness,
+        c.calibrated,
+        c.reduce_flashing,
+        c.hud_scale,
+        c.crosshair_scale,
         base = Config::BASE_RADIANS_PER_PIXEL,
         sens = range(&Config::SENSITIVITY_RANGE),
         fov = range(&Config::FOV_RANGE),
         scale = range(&Config::RENDER_SCALE_RANGE),
         fps = range(&Config::TARGET_FPS_RANGE),
+        bright = range(&Config::BRIGHTNESS_RANGE),
+        ui = range(&Config::HUD_SCALE_RANGE),
+        cross = range(&Config::CROSSHAIR_SCALE_RANGE),
     );
     for action in Action::ALL {
         let names: Vec<String> = c.bindings.bindings(action).map(|b| format!("\"{b}\"")).collect();
@@ -98,6 +119,8 @@ struct Sections {
     controls: Entries,
     #[serde(default)]
     video: Entries,
+    #[serde(default)]
+    comfort: Entries,
     #[serde(default)]
     bindings: Entries,
     #[serde(default)]
@@ -150,6 +173,18 @@ pub(super) fn parse(text: &str) -> Result<Config, ParseError> {
             _ => Err(unknown(&VIDEO)),
         };
         set.map_err(|problem| error(key, "video", problem))?;
+    }
+    for (key, value) in by_position(&sections.comfort) {
+        let value = value.get_ref();
+        let set = match key.get_ref().as_str() {
+            "brightness" => number(value, &Config::BRIGHTNESS_RANGE).map(|v| c.brightness = v),
+            "calibrated" => boolean(value).map(|v| c.calibrated = v),
+            "reduce_flashing" => boolean(value).map(|v| c.reduce_flashing = v),
+            "hud_scale" => number(value, &Config::HUD_SCALE_RANGE).map(|v| c.hud_scale = v),
+            "crosshair_scale" => number(value, &Config::CROSSHAIR_SCALE_RANGE).map(|v| c.crosshair_scale = v),
+            _ => Err(unknown(&COMFORT)),
+        };
+        set.map_err(|problem| error(key, "comfort", problem))?;
     }
     c.bindings = bindings(&sections.bindings, &error)?;
     for (key, value) in by_position(&sections.gi) {

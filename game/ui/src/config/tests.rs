@@ -48,6 +48,11 @@ fn changed() -> Config {
         show_fps: true,
         bindings,
         gi,
+        brightness: 0.7,
+        calibrated: true,
+        reduce_flashing: true,
+        hud_scale: 1.25,
+        crosshair_scale: 2.5,
     }
 }
 
@@ -59,6 +64,8 @@ fn every_setting_survives_save_and_load() {
     assert!(c.mouse_sensitivity != d.mouse_sensitivity && c.invert_y != d.invert_y && c.fov_deg != d.fov_deg);
     assert!(c.render_scale != d.render_scale && c.vsync != d.vsync && c.show_fps != d.show_fps);
     assert!(c.dynamic_resolution != d.dynamic_resolution && c.target_fps != d.target_fps);
+    assert!(c.brightness != d.brightness && c.calibrated != d.calibrated && c.reduce_flashing != d.reduce_flashing);
+    assert!(c.hud_scale != d.hud_scale && c.crosshair_scale != d.crosshair_scale);
     for action in [Action::Jump, Action::Fire, Action::MoveForward, Action::Crouch] {
         assert_ne!(c.bindings.get(action), d.bindings.get(action), "{action:?}");
     }
@@ -258,4 +265,15 @@ fn a_device_as_the_config_is_neither_read_nor_replaced() {
     let e = Config::default().save(zero).unwrap_err();
     assert!(e.to_string().contains("will not write it"), "{e}");
     assert!(std::fs::metadata(zero).is_ok_and(|m| !m.is_file()), "still the device");
+}
+
+#[test]
+fn comfort_settings_are_checked_and_placed() {
+    let e = parse_err("[comfort]\nbrightness = 0.5\ncrosshair_scale = 9.0\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(3), Some("comfort.crosshair_scale")), "{e}");
+    let e = parse_err("[comfort]\nflashy = true\n");
+    assert!(e.to_string().contains("reduce_flashing"), "the known keys are listed: {e}");
+    let c = Config::from_toml("[comfort]\nbrightness = -1.5\n", Path::new("c.toml")).unwrap();
+    assert_eq!((c.brightness, c.calibrated), (-1.5, false));
+    assert!((c.exposure_scale() - 0.3536).abs() < 1e-3, "-1.5 stops: {}", c.exposure_scale());
 }

@@ -208,6 +208,25 @@ fn video(ui: &mut egui::Ui, config: &mut Config) {
     ui.add_enabled(config.dynamic_resolution, fps).on_hover_text("the frame rate dynamic resolution holds");
     ui.checkbox(&mut config.vsync, "VSync").on_hover_text("wait for the display: no tearing, a little more latency");
     ui.checkbox(&mut config.show_fps, "Show FPS");
+    ui.separator();
+    let brightness = egui::Slider::new(&mut config.brightness, Config::BRIGHTNESS_RANGE)
+        .step_by(0.1)
+        .fixed_decimals(1)
+        .suffix(" stops")
+        .text("Brightness");
+    ui.add(brightness).on_hover_text("each stop doubles the picture's light; 0 shows the level as it is lit");
+    ui.checkbox(&mut config.reduce_flashing, "Reduce flashing")
+        .on_hover_text("a steady lamp when the battery runs low, and a dimmer muzzle flash");
+    let hud = egui::Slider::new(&mut config.hud_scale, Config::HUD_SCALE_RANGE)
+        .step_by(0.05)
+        .custom_formatter(|v, _| format!("{:.0}%", v * 100.0))
+        .custom_parser(|s| s.trim().trim_end_matches('%').trim().parse::<f64>().ok().map(|p| p / 100.0))
+        .text("HUD size");
+    ui.add(hud).on_hover_text("the HUD while playing; the menus keep their size");
+    let crosshair = egui::Slider::new(&mut config.crosshair_scale, Config::CROSSHAIR_SCALE_RANGE)
+        .fixed_decimals(1)
+        .text("Crosshair size");
+    ui.add(crosshair);
 }
 
 /// The first key or mouse button pressed this frame that can be bound. The game's `Input`

@@ -424,3 +424,21 @@ fn back_and_esc_leave_the_level_menu() {
     assert_eq!(h.pass_with(Vec::new(), &key(KeyCode::Escape)), None);
     assert_eq!(h.menus.screen(), Screen::MainMenu);
 }
+
+#[test]
+fn the_brightness_screen_sets_brightness_then_goes_to_the_main_menu() {
+    let mut h = Harness::new();
+    h.menus.calibrate();
+    h.settle();
+    assert_eq!(h.menus.screen(), Screen::Calibration);
+    assert!(h.shows("Set the brightness") && h.shows("Done"), "{:?}", h.shown);
+    assert!(!h.menus.in_game());
+    let at = h.slider_point("Brightness", 0.95);
+    assert_eq!(h.click_at(at, egui::PointerButton::Primary), Some(MenuAction::ConfigChanged));
+    assert!(h.config.brightness > 1.5, "{}", h.config.brightness);
+    assert!(!h.config.calibrated);
+    h.settle();
+    assert_eq!(h.click("Done"), Some(MenuAction::ConfigChanged));
+    assert!(h.config.calibrated);
+    assert_eq!(h.menus.screen(), Screen::MainMenu);
+}
