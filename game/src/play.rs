@@ -277,7 +277,7 @@ impl GameWindow {
                     *next += 1;
                 }
             }
-            self.messages.push_events(&self.sim.events, &self.sim.state);
+            self.messages.push_events(&self.sim.events, &self.sim.state, self.config.captions);
             self.ticks_this_frame += 1;
             self.prev = before;
         }

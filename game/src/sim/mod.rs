@@ -90,6 +90,12 @@ pub enum Event {
     Picked(PickupKind),
     PlayerHurt,
     LampPickedUp,
+    /// Crawler `enemy` (its index) has noticed the player (seen, heard, or lit by the beam);
+    /// `in_sight`: a clear line from the player's eyes to it.
+    Noticed {
+        enemy: u16,
+        in_sight: bool,
+    },
 }
 
 /// A level's fixed gameplay data: its collision geometry and what it places.
@@ -324,11 +330,16 @@ impl Simulation {
                     Vec3::ZERO
                 },
             };
+            let calm = matches!(e.mind, enemy::Mind::Patrol | enemy::Mind::Search);
             if let enemy::Deed::Struck(damage) =
                 e.step(&senses, &spawn.route, level, &self.world.nav, &self.enemy_controller, dt)
             {
                 s.player.hurt(damage);
                 self.events.push(Event::PlayerHurt);
+            }
+            if calm && e.mind == enemy::Mind::Alert {
+                let in_sight = enemy::clear_line(level, s.player.eye(), e.eye());
+                self.events.push(Event::Noticed { enemy: i as u16, in_sight });
             }
         }
     }

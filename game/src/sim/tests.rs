@@ -131,6 +131,30 @@ fn a_crawler_notices_a_lit_player_far_off_but_a_dark_one_only_close() {
 }
 
 #[test]
+fn noticing_the_player_is_an_event_once_saying_whether_it_is_in_sight() {
+    // Lit from behind at 12 m (our beam on its back); then 8 m away behind a wall, close
+    // enough to hear a shot through it.
+    for (z, wall, in_sight) in [(-12.0, None, true), (-8.0, Some(-6.0), false)] {
+        let mut s = sim(world(vec![crawler(0.0, z, 0.0, vec![])], vec![], None, wall));
+        s.state.lamp.on = true;
+        let mut noticed = Vec::new();
+        for _ in 0..60 {
+            s.step(&idle());
+            noticed.extend(s.events.iter().filter(|e| matches!(e, Event::Noticed { .. })).copied());
+        }
+        if wall.is_none() {
+            assert_eq!(noticed, vec![Event::Noticed { enemy: 0, in_sight }], "once, when it turns alert");
+        } else {
+            // Behind a wall it neither sees us nor feels the beam: a gunshot it hears does it.
+            assert!(noticed.is_empty(), "{noticed:?}");
+            run(&mut s, 1, press(buttons::FIRE));
+            let events: Vec<Event> = s.events.clone();
+            assert!(events.contains(&Event::Noticed { enemy: 0, in_sight }), "{events:?}");
+        }
+    }
+}
+
+#[test]
 fn a_crawler_turns_approaches_strikes_and_can_kill() {
     let mut s = sim(world(vec![crawler(0.0, -10.0, 90.0, vec![])], vec![], None, None));
     let start = s.state.enemies[0].body.position.distance(Vec3::ZERO);

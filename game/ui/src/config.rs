@@ -45,6 +45,8 @@ pub struct Config {
     pub calibrated: bool,
     /// Tames what flashes: the low-battery flicker and the muzzle flash.
     pub reduce_flashing: bool,
+    /// Writes what is heard and matters (a crawler noticing you: where, and if out of sight).
+    pub captions: bool,
     /// Size of the HUD (the menus keep theirs), in [`Config::HUD_SCALE_RANGE`].
     pub hud_scale: f32,
     /// Size of the crosshair, in [`Config::CROSSHAIR_SCALE_RANGE`].
@@ -68,6 +70,7 @@ impl Default for Config {
             brightness: 0.0,
             calibrated: false,
             reduce_flashing: false,
+            captions: true,
             hud_scale: 1.0,
             crosshair_scale: 1.0,
         }

@@ -21,7 +21,7 @@ pub(super) struct ParseError {
 }
 
 const SECTIONS: [&str; 5] = ["controls", "video", "comfort", "bindings", "gi"];
-const COMFORT: [&str; 5] = ["brightness", "calibrated", "reduce_flashing", "hud_scale", "crosshair_scale"];
+const COMFORT: [&str; 6] = ["brightness", "calibrated", "reduce_flashing", "captions", "hud_scale", "crosshair_scale"];
 const CONTROLS: [&str; 3] = ["sensitivity", "invert_y", "fov_deg"];
 const VIDEO: [&str; 5] = ["render_scale", "dynamic_resolution", "target_fps", "vsync", "show_fps"];
 
@@ -60,6 +60,8 @@ pub(super) fn write(c: &Config) -> String {
          calibrated = {}\n\
          # tame the low-battery flicker and the muzzle flash\n\
          reduce_flashing = {}\n\
+         # write what is heard and matters (a crawler noticing you: where, and if out of sight)\n\
+         captions = {}\n\
          # size of the HUD ({ui})\n\
          hud_scale = {:?}\n\
          # size of the crosshair ({cross})\n\
@@ -79,6 +81,7 @@ pub(super) fn write(c: &Config) -> String {
         c.brightness,
         c.calibrated,
         c.reduce_flashing,
+        c.captions,
         c.hud_scale,
         c.crosshair_scale,
         base = Config::BASE_RADIANS_PER_PIXEL,
@@ -180,6 +183,7 @@ pub(super) fn parse(text: &str) -> Result<Config, ParseError> {
             "brightness" => number(value, &Config::BRIGHTNESS_RANGE).map(|v| c.brightness = v),
             "calibrated" => boolean(value).map(|v| c.calibrated = v),
             "reduce_flashing" => boolean(value).map(|v| c.reduce_flashing = v),
+            "captions" => boolean(value).map(|v| c.captions = v),
             "hud_scale" => number(value, &Config::HUD_SCALE_RANGE).map(|v| c.hud_scale = v),
             "crosshair_scale" => number(value, &Config::CROSSHAIR_SCALE_RANGE).map(|v| c.crosshair_scale = v),
             _ => Err(unknown(&COMFORT)),

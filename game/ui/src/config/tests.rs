@@ -51,6 +51,7 @@ fn changed() -> Config {
         brightness: 0.7,
         calibrated: true,
         reduce_flashing: true,
+        captions: false,
         hud_scale: 1.25,
         crosshair_scale: 2.5,
     }
@@ -65,7 +66,7 @@ fn every_setting_survives_save_and_load() {
     assert!(c.render_scale != d.render_scale && c.vsync != d.vsync && c.show_fps != d.show_fps);
     assert!(c.dynamic_resolution != d.dynamic_resolution && c.target_fps != d.target_fps);
     assert!(c.brightness != d.brightness && c.calibrated != d.calibrated && c.reduce_flashing != d.reduce_flashing);
-    assert!(c.hud_scale != d.hud_scale && c.crosshair_scale != d.crosshair_scale);
+    assert!(c.hud_scale != d.hud_scale && c.crosshair_scale != d.crosshair_scale && c.captions != d.captions);
     for action in [Action::Jump, Action::Fire, Action::MoveForward, Action::Crouch] {
         assert_ne!(c.bindings.get(action), d.bindings.get(action), "{action:?}");
     }

@@ -217,6 +217,8 @@ fn video(ui: &mut egui::Ui, config: &mut Config) {
     ui.add(brightness).on_hover_text("each stop doubles the picture's light; 0 shows the level as it is lit");
     ui.checkbox(&mut config.reduce_flashing, "Reduce flashing")
         .on_hover_text("a steady lamp when the battery runs low, and a dimmer muzzle flash");
+    ui.checkbox(&mut config.captions, "Captions")
+        .on_hover_text("write what is heard and matters: a crawler noticing you, where, and whether you can see it");
     let hud = egui::Slider::new(&mut config.hud_scale, Config::HUD_SCALE_RANGE)
         .step_by(0.05)
         .custom_formatter(|v, _| format!("{:.0}%", v * 100.0))
