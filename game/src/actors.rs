@@ -21,10 +21,29 @@ pub struct ActorMeshes {
     battery: MeshId,
     ammo: MeshId,
     medkit: MeshId,
+    /// The raised red cross on a medkit: health tells itself from ammo by shape as well as
+    /// colour, for colour-blind players.
+    cross: MeshId,
     lamp: MeshId,
     lens: MeshId,
     mark: MeshId,
     sign: MeshId,
+}
+
+/// The medkit's half extents, m.
+const MEDKIT: Vec3 = Vec3::new(0.17, 0.1, 0.13);
+const CROSS_HALF_THICKNESS: f32 = 0.012;
+const CROSS_RED: [f32; 3] = [0.8, 0.05, 0.05];
+const CROSS_GLOW: [f32; 3] = [0.3, 0.01, 0.01];
+
+/// A plus sign of two crossed plates, lying flat.
+fn cross() -> (Vec<engine::scene::Vertex>, Vec<u32>) {
+    let (mut vertices, mut indices) = primitives::cuboid(Vec3::new(0.11, CROSS_HALF_THICKNESS, 0.035));
+    let (v, i) = primitives::cuboid(Vec3::new(0.035, CROSS_HALF_THICKNESS, 0.11));
+    let base = vertices.len() as u32;
+    vertices.extend(v);
+    indices.extend(i.into_iter().map(|k| k + base));
+    (vertices, indices)
 }
 
 impl ActorMeshes {
@@ -36,7 +55,8 @@ impl ActorMeshes {
             eye: add(primitives::uv_sphere(0.045, 8, 6)),
             battery: add(primitives::cylinder(0.08, 0.26, 12)),
             ammo: add(primitives::cuboid(Vec3::new(0.16, 0.09, 0.11))),
-            medkit: add(primitives::cuboid(Vec3::new(0.17, 0.1, 0.13))),
+            medkit: add(primitives::cuboid(MEDKIT)),
+            cross: add(cross()),
             lamp: add(primitives::cylinder(0.06, 0.12, 12)),
             lens: add(primitives::cylinder(0.045, 0.01, 12)),
             mark: add(primitives::cuboid(Vec3::new(0.05, 0.05, 0.004))),
@@ -69,6 +89,10 @@ impl ActorMeshes {
             };
             let transform = Mat4::from_rotation_translation(spin, p.position + Vec3::Y * (lift + 0.02));
             out.push(Instance { mesh, transform, base_color: color, emissive: glow });
+            if p.kind == PickupKind::Health {
+                let on_top = transform * Mat4::from_translation(Vec3::Y * (MEDKIT.y + CROSS_HALF_THICKNESS));
+                out.push(Instance { mesh: self.cross, transform: on_top, base_color: CROSS_RED, emissive: CROSS_GLOW });
+            }
         }
         let lamp = &state.lamp;
         if !lamp.attached {
@@ -142,5 +166,45 @@ impl ActorMeshes {
                 emissive: [eyes_lit, eyes_lit * 0.12, 0.0],
             });
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::level_entities::PickupSpawn;
+    use crate::sim::Pickup;
+
+    #[test]
+    fn a_medkit_wears_a_red_cross_and_ammo_does_not() {
+        let meshes = ActorMeshes {
+            crawler: MeshId(0),
+            eye: MeshId(1),
+            battery: MeshId(2),
+            ammo: MeshId(3),
+            medkit: MeshId(4),
+            cross: MeshId(5),
+            lamp: MeshId(6),
+            lens: MeshId(7),
+            mark: MeshId(8),
+            sign: MeshId(9),
+        };
+        let level = engine::scene::load_level(&crate::default_level()).unwrap();
+        let sim = crate::sim::Simulation::new(&level, crate::sim::level_world(&level).unwrap(), 60, 1);
+        let mut state = sim.state.clone();
+        let at = |kind, x| {
+            Pickup::spawn(&PickupSpawn { name: String::new(), kind, position: Vec3::new(x, 0.0, 0.0), amount: 1.0 })
+        };
+        state.pickups = vec![at(PickupKind::Ammo, 0.0), at(PickupKind::Health, 2.0)];
+        let instances = meshes.instances(sim.entities(), &state, &state, 1.0, 0.0);
+        let crosses: Vec<&Instance> = instances.iter().filter(|i| i.mesh == meshes.cross).collect();
+        assert_eq!(crosses.len(), 1, "one cross, on the medkit only");
+        let medkit = instances.iter().find(|i| i.mesh == meshes.medkit).unwrap();
+        let (top, box_centre) = (crosses[0].transform.w_axis.truncate(), medkit.transform.w_axis.truncate());
+        assert!(
+            (top.x - box_centre.x).abs() < 1e-5 && top.y > box_centre.y + MEDKIT.y,
+            "on top: {top} over {box_centre}"
+        );
+        assert!(crosses[0].base_color[0] > 5.0 * crosses[0].base_color[1], "red");
     }
 }
