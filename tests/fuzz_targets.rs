@@ -168,26 +168,7 @@ fn embedded(level: &Path, glb: bool) -> Vec<u8> {
         return serde_json::to_vec(&doc).expect("JSON");
     }
     buffer.as_object_mut().expect("a buffer object").remove("uri");
-    let mut json = serde_json::to_vec(&doc).expect("JSON");
-    let mut bin = bin;
-    while !json.len().is_multiple_of(4) {
-        json.push(b' ');
-    }
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend(2u32.to_le_bytes());
-    out.extend((total as u32).to_le_bytes());
-    out.extend((json.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend(json);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend(bin);
-    out
+    scene::pack_glb(&serde_json::to_vec(&doc).expect("JSON"), &bin)
 }
 
 fn base64(bytes: &[u8]) -> String {

@@ -19,6 +19,29 @@ pub(crate) fn is_glb(bytes: &[u8]) -> bool {
 type Chunk<'a> = ([u8; 4], &'a [u8], usize);
 
 /// Splits a GLB container, checking every length against the bytes actually present.
+/// A GLB container of `json` and `bin`: the 12-byte header, the JSON chunk padded with spaces
+/// and the BIN chunk padded with zeros, as the spec lays them out (what the loader reads).
+pub fn pack_glb(json: &[u8], bin: &[u8]) -> Vec<u8> {
+    let pad = |bytes: &[u8], with: u8| {
+        let mut out = bytes.to_vec();
+        out.resize(bytes.len().next_multiple_of(4), with);
+        out
+    };
+    let (json, bin) = (pad(json, b' '), pad(bin, 0));
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend(2u32.to_le_bytes());
+    out.extend((total as u32).to_le_bytes());
+    out.extend((json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend(json);
+    out.extend((bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend(bin);
+    out
+}
+
 pub(crate) fn split_glb(bytes: &[u8]) -> Result<Glb<'_>, String> {
     let u32_at = |at: usize| -> Option<u32> {
         let b = bytes.get(at..at.checked_add(4)?)?;

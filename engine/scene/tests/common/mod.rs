@@ -145,28 +145,9 @@ impl Bin {
     }
 }
 
-/// A GLB container: header, JSON chunk padded with spaces, BIN chunk padded with zeros.
+/// A GLB container of a document and its BIN chunk.
 pub fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut j = serde_json::to_vec(json).unwrap();
-    while !j.len().is_multiple_of(4) {
-        j.push(b' ');
-    }
-    let mut b = bin.to_vec();
-    while !b.len().is_multiple_of(4) {
-        b.push(0);
-    }
-    let total = 12 + 8 + j.len() + 8 + b.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend(2u32.to_le_bytes());
-    out.extend((total as u32).to_le_bytes());
-    out.extend((j.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend(j);
-    out.extend((b.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend(b);
-    out
+    scene::pack_glb(&serde_json::to_vec(json).unwrap(), bin)
 }
 
 /// One triangle in the XY plane facing +Z (counter-clockwise), as positions.
