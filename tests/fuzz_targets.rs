@@ -152,13 +152,15 @@ fn embedded(level: &Path, glb: bool) -> Vec<u8> {
     let read =
         |name: &str| std::fs::read(level.join(name)).unwrap_or_else(|e| panic!("{}/{name}: {e}", level.display()));
     let mut doc: serde_json::Value = serde_json::from_slice(&read("scene.gltf")).expect("a shipped glTF is JSON");
-    let data_uri =
-        |bytes: &[u8]| serde_json::Value::String(format!("data:application/octet-stream;base64,{}", base64(bytes)));
+    let data_uri = |bytes: &[u8]| {
+        serde_json::Value::String(format!("data:application/octet-stream;base64,{}", scene::encode_base64(bytes)))
+    };
     // (`get_mut`: indexing a missing key would insert a null, which is not glTF.)
     for image in doc.get_mut("images").and_then(|i| i.as_array_mut()).into_iter().flatten() {
         let file = image["uri"].as_str().map(str::to_owned);
         if let Some(file) = file {
-            image["uri"] = serde_json::Value::String(format!("data:image/png;base64,{}", base64(&read(&file))));
+            image["uri"] =
+                serde_json::Value::String(format!("data:image/png;base64,{}", scene::encode_base64(&read(&file))));
         }
     }
     let buffer = &mut doc["buffers"][0];
@@ -169,18 +171,6 @@ fn embedded(level: &Path, glb: bool) -> Vec<u8> {
     }
     buffer.as_object_mut().expect("a buffer object").remove("uri");
     scene::pack_glb(&serde_json::to_vec(&doc).expect("JSON"), &bin)
-}
-
-fn base64(bytes: &[u8]) -> String {
-    const ABC: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
-    for chunk in bytes.chunks(3) {
-        let n = chunk.iter().enumerate().fold(0u32, |n, (i, &b)| n | (b as u32) << (16 - 8 * i));
-        for i in 0..4 {
-            out.push(if i <= chunk.len() { ABC[(n >> (18 - 6 * i) & 63) as usize] as char } else { '=' });
-        }
-    }
-    out
 }
 
 /// A deterministic mutator (xorshift): the corpus driver's stand-in for libFuzzer's.

@@ -19,8 +19,8 @@ use engine::headless::{read_texture, HeadlessTarget, ImageKind, RenderedImage};
 use engine::passes::{names, LAMP_MAP_SIZE};
 use engine::renderer::Renderer;
 use engine::scene::{
-    load_gltf, AlphaMode, Filter, HeadlampProfile, IntensityDistribution, Material, Mesh, Sampler, Scene, Texture,
-    TextureRef, TextureTransform, Vertex, Wrap,
+    encode_base64 as base64, load_gltf, AlphaMode, Filter, HeadlampProfile, IntensityDistribution, Material, Mesh,
+    Sampler, Scene, Texture, TextureRef, TextureTransform, Vertex, Wrap,
 };
 
 const SIZE: (u32, u32) = (96, 64);
@@ -187,19 +187,6 @@ fn texel_of(c: Vec3) -> Option<usize> {
 }
 
 // --- A minimal glTF writer: one quad, its buffer embedded as base64. ---
-
-fn base64(bytes: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for chunk in bytes.chunks(3) {
-        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
-        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
-        for i in 0..4 {
-            out.push(if i <= chunk.len() { A[(n >> (18 - 6 * i) & 63) as usize] as char } else { '=' });
-        }
-    }
-    out
-}
 
 fn png_uri(width: u32, height: u32, rgba: &[u8]) -> String {
     let img = image::RgbaImage::from_raw(width, height, rgba.to_vec()).unwrap();

@@ -140,6 +140,20 @@ fn percent_decode(s: &str) -> Result<Vec<u8>, String> {
     Ok(out)
 }
 
+/// Standard base64 with padding: how a glTF embeds a file in a `data:` URI (what the loader's
+/// decoder reads back).
+pub fn encode_base64(bytes: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let n = chunk.iter().enumerate().fold(0u32, |n, (i, &b)| n | u32::from(b) << (16 - 8 * i));
+        for i in 0..4 {
+            out.push(if i <= chunk.len() { ALPHABET[(n >> (18 - 6 * i) & 63) as usize] as char } else { '=' });
+        }
+    }
+    out
+}
+
 /// Standard or URL-safe base64, padding optional.
 fn decode_base64(s: &str) -> Result<Vec<u8>, String> {
     let s = s.trim_end_matches('=');
@@ -179,6 +193,10 @@ mod tests {
         assert_eq!(decode_base64("AAECAw==").unwrap(), [0, 1, 2, 3]);
         assert!(decode_base64("a").is_err());
         assert!(decode_base64("a*bc").is_err());
+        for bytes in [&b""[..], b"h", b"he", b"hel", b"hello", &[0, 255, 254, 1]] {
+            assert_eq!(decode_base64(&encode_base64(bytes)).unwrap(), bytes);
+        }
+        assert_eq!(encode_base64(b"hello"), "aGVsbG8=");
     }
 
     #[test]

@@ -27,7 +27,7 @@ mod types;
 mod zip_level;
 
 pub use error::{LoadError, LoadErrorKind, LoadWarning, TextPos};
-pub use gltf_container::pack_glb;
+pub use gltf_container::{encode_base64, pack_glb};
 pub use gltf_loader::load_gltf;
 pub use ies::{ies_texture_size, IesProfile, MAX_IES_ANGLES, MAX_IES_BYTES, MAX_IES_VALUES};
 pub use image_loader::{load_texture, texture_from_image};
