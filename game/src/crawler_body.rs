@@ -33,7 +33,7 @@ const SPINE: [(f32, Vec3); 4] = [
 const NECK: Vec3 = Vec3::new(0.08, 0.08, 0.12);
 const HEAD_SIZE: Vec3 = Vec3::new(0.11, 0.1, 0.15);
 /// Eyes in the head's frame, and their radius.
-const EYE: Vec3 = Vec3::new(0.055, 0.035, -0.115);
+const EYE: Vec3 = Vec3::new(0.05, 0.0, -0.13);
 const EYE_RADIUS: f32 = 0.03;
 
 /// A limb: where it joins the body (the hind legs at the pelvis, the forelimbs at the
@@ -259,8 +259,8 @@ pub fn pose(prev: &Enemy, cur: &Enemy, t: f32, clock: f32, index: usize) -> Pose
         let root = if fore { place(shape.root) } else { shape.root + bob };
         // Walking: the foot swings forward lifted and pushes back planted.
         let p = phase + shape.phase;
-        let mut foot = shape.rest
-            + Vec3::new(0.0, STEP_LIFT * stride * p.sin().max(0.0), 0.25 * GAIT * stride * p.cos());
+        let mut foot =
+            shape.rest + Vec3::new(0.0, STEP_LIFT * stride * p.sin().max(0.0), 0.25 * GAIT * stride * p.cos());
         if fore {
             // Claws up in front of the chest when it rears; the striker drawn back over the
             // shoulder, then flung out to its reach.
@@ -343,9 +343,9 @@ impl LampLight {
 
 /// Returned radiance per irradiance of the eyes' tapetum, sr⁻¹ (a retroreflector's coefficient
 /// R_A: far above a white diffuser's 1/π).
-const RETROREFLECTION: f32 = 8.0;
+const RETROREFLECTION: f32 = 4.0;
 /// The tapetum's tint: amber.
-const TAPETUM: Vec3 = Vec3::new(1.0, 0.55, 0.18);
+const TAPETUM: Vec3 = Vec3::new(1.0, 0.5, 0.12);
 /// The retroreflected light's spread about the way back to the lamp, as cosines (full within
 /// 2°, gone at 12°).
 const RETRO_COS_FULL: f32 = 0.9994;
@@ -426,9 +426,11 @@ impl CrawlerMeshes {
             out.push(Instance { mesh: self.sphere, transform, base_color: skin, emissive: hurt });
         }
         for (i, [root, joint, end]) in pose.limbs.iter().enumerate() {
-            let (bone, meshes) = if i < 2 { (HIND, [self.bones[0], self.bones[1]]) } else { (FORE, [self.bones[2], self.bones[3]]) };
-            for ((from, to), (mesh, radius)) in
-                [(*root, *joint), (*joint, *end)].into_iter().zip([(meshes[0], bone.upper_radius), (meshes[1], bone.lower_radius)])
+            let (bone, meshes) =
+                if i < 2 { (HIND, [self.bones[0], self.bones[1]]) } else { (FORE, [self.bones[2], self.bones[3]]) };
+            for ((from, to), (mesh, radius)) in [(*root, *joint), (*joint, *end)]
+                .into_iter()
+                .zip([(meshes[0], bone.upper_radius), (meshes[1], bone.lower_radius)])
             {
                 // The capsule's axis (+Y) from bone end to bone end, its caps round the joints.
                 let axis = (to - from).try_normalize().unwrap_or(Vec3::Y);
@@ -447,7 +449,12 @@ impl CrawlerMeshes {
         for eye in pose.eyes() {
             let shine = if dead { Vec3::ZERO } else { eyeshine(eye, gaze, lamp) };
             let transform = Mat4::from_scale_rotation_translation(Vec3::splat(EYE_RADIUS), Quat::IDENTITY, eye);
-            out.push(Instance { mesh: self.sphere, transform, base_color: EYE_COLOR, emissive: (glow + shine).to_array() });
+            out.push(Instance {
+                mesh: self.sphere,
+                transform,
+                base_color: EYE_COLOR,
+                emissive: (glow + shine).to_array(),
+            });
         }
     }
 }

@@ -185,7 +185,8 @@ fn instances_show_eyeshine_alive_and_dull_eyes_dead() {
         let (prev, cur) = in_mind(mind, 2);
         let mut out = Vec::new();
         meshes.instances(&mut out, (&prev, &cur), 1.0, 0.0, 0, lamp);
-        let eyes: Vec<f32> = out.iter().filter(|i| i.transform.x_axis.truncate().length() < 0.05).map(|i| i.emissive[0]).collect();
+        let eyes: Vec<f32> =
+            out.iter().filter(|i| i.transform.x_axis.truncate().length() < 0.05).map(|i| i.emissive[0]).collect();
         assert_eq!(eyes.len(), 2, "two eyes");
         eyes[0]
     };

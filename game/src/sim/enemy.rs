@@ -177,6 +177,13 @@ impl Enemy {
         }
     }
 
+    /// A tick passes: the flinch fades and the time in this state of mind runs (for a body, the
+    /// time since it fell, which its drawn fall follows).
+    pub fn age(&mut self) {
+        self.flinch = self.flinch.saturating_sub(1);
+        self.timer = self.timer.saturating_add(1);
+    }
+
     fn set_mind(&mut self, mind: Mind) {
         self.mind = mind;
         self.timer = 0;
@@ -208,8 +215,7 @@ impl Enemy {
         controller: &CharacterController,
         dt: f32,
     ) -> Deed {
-        self.flinch = self.flinch.saturating_sub(1);
-        self.timer = self.timer.saturating_add(1);
+        self.age();
         if self.mind == Mind::Dead {
             return Deed::Nothing;
         }
