@@ -197,6 +197,8 @@ fn replays_do_what_their_scripts_say() {
     assert!(end.player.alive() && end.lamp.on && end.lamp.attached);
     let shots = s.windows(2).filter(|w| w[1].weapon.flash == game::sim::weapon::FLASH_TICKS).count();
     assert!(shots >= 12, "the crawlers went down to gunfire: {shots} shots");
+    // The last one down ended the game; its body still finished falling.
+    assert!(end.enemies.iter().all(|e| e.timer >= 20), "{:?}", end.enemies);
 
     // The Gallery: won at the way out at the back of the vault, two of its four crawlers shot
     // on the way there, the player unhurt.
@@ -217,4 +219,13 @@ fn replays_do_what_their_scripts_say() {
     assert_eq!(end.enemies_left(), 0);
     assert!(end.player.body.position.y < 0.1, "back on the floor");
     assert!(end.enemies.iter().all(|e| e.body.position.y.abs() < 0.1), "the crawlers kept to the ground floor");
+
+    // The strike: the guard walks up (its walk cycle advancing), its attack starts on tick 256 and
+    // its blow comes at the end of the windup on tick 280, its frame.
+    let s = states(&replay_files::open("crawler_strike"));
+    let guard = |tick: usize| s[tick].enemies[0];
+    assert_ne!(guard(230).walked, guard(220).walked, "walking up");
+    assert_eq!((guard(256).mind, guard(256).timer), (game::sim::enemy::Mind::Attack, 0));
+    assert_eq!((guard(280).mind, guard(280).timer), (game::sim::enemy::Mind::Attack, game::sim::enemy::WINDUP));
+    assert_eq!(guard(280).walked, guard(256).walked, "it stands to strike");
 }

@@ -11,6 +11,9 @@ const SIZE: (u32, u32) = (320, 180);
 /// Each replay and the ticks whose frames are checked (the frame after that many ticks), in the
 /// order of their scripts' names.
 const SHOTS: &[(&str, &[u32])] = &[
+    // A crawler's body posed by the simulation: walking up; the strike drawn back mid-windup;
+    // the blow at full reach as the windup ends; recovering.
+    ("crawler_strike", &[230, 268, 280, 296]),
     // The Gallery won: the blue room's crawler seen through its door from the atrium; the first
     // shot's muzzle flash lighting the blue room; the vault's guard in its doorway; at the way
     // out, won.
@@ -31,8 +34,9 @@ const SHOTS: &[(&str, &[u32])] = &[
     // from that corner, looking at it.
     ("walls", &[0, 60, 120, 190]),
     // The Cellar won: the first shot's muzzle flash lighting the red/green room; that
-    // crawler down; the hall's crawler down in the corridor; the storeroom's guard down, won.
-    ("win", &[171, 189, 451, 772]),
+    // crawler falling; the hall's crawler lying in the corridor; the storeroom's guard lying
+    // in the storeroom, won.
+    ("win", &[171, 189, 478, 795]),
 ];
 
 fn mean_luminance(img: &image::RgbaImage) -> f32 {

@@ -1,6 +1,7 @@
 //! How the simulation's things look: crawlers, pickups, the lamp lying somewhere, shot marks and
 //! the exit sign, as engine mesh instances. They are drawn into the G-buffer and the lamp's view
-//! like the level, so the headlamp lights them, they cast shadows and they bounce light.
+//! like the level, so the headlamp lights them, they cast shadows and they bounce light. A
+//! crawler's body and its animation are in [`crate::crawler_body`].
 
 use engine::frame::{Instance, MeshId};
 use engine::glam::{Mat4, Quat, Vec3};
@@ -8,7 +9,7 @@ use engine::gpu::Gpu;
 use engine::primitives;
 use engine::renderer::Renderer;
 
-use crate::sim::enemy::{self, Mind};
+use crate::crawler_body::{CrawlerMeshes, LampLight};
 use crate::sim::{LevelEntities, PickupKind, WorldState};
 
 /// Shot marks are drawn this long (a spark for the first few ticks, then a dark mark).
@@ -16,8 +17,7 @@ const SPARK_TICKS: u32 = 5;
 
 /// The meshes, added to a renderer once.
 pub struct ActorMeshes {
-    crawler: MeshId,
-    eye: MeshId,
+    crawler: CrawlerMeshes,
     battery: MeshId,
     ammo: MeshId,
     medkit: MeshId,
@@ -48,11 +48,10 @@ fn cross() -> (Vec<engine::scene::Vertex>, Vec<u32>) {
 
 impl ActorMeshes {
     pub fn add_to(renderer: &mut Renderer, gpu: &Gpu) -> Self {
+        let crawler = CrawlerMeshes::add_to(renderer, gpu);
         let mut add = |(v, i): (Vec<_>, Vec<u32>)| renderer.add_mesh(gpu, &v, &i);
-        let c = enemy::body_config();
         Self {
-            crawler: add(primitives::capsule(c.radius, c.height, 12)),
-            eye: add(primitives::uv_sphere(0.045, 8, 6)),
+            crawler,
             battery: add(primitives::cylinder(0.08, 0.26, 12)),
             ammo: add(primitives::cuboid(Vec3::new(0.16, 0.09, 0.11))),
             medkit: add(primitives::cuboid(MEDKIT)),
@@ -65,7 +64,8 @@ impl ActorMeshes {
     }
 
     /// The instances of `state`, blending moving things between `prev` (t = 0) and it (t = 1).
-    /// `time` (seconds, for idle animation only) never feeds back into the simulation.
+    /// `time` (seconds, for the pickups' idle spin only) never feeds back into the simulation;
+    /// `lamp` is the headlamp as the crawlers' eyes catch it.
     pub fn instances(
         &self,
         entities: &LevelEntities,
@@ -73,11 +73,14 @@ impl ActorMeshes {
         state: &WorldState,
         t: f32,
         time: f32,
+        lamp: &LampLight,
     ) -> Vec<Instance> {
         let mut out = Vec::new();
+        // The world's tick clock, blended: crawlers breathe by it, so replays breathe alike.
+        let clock = prev.tick as f32 + state.tick.saturating_sub(prev.tick) as f32 * t;
         for (i, e) in state.enemies.iter().enumerate() {
             let p = prev.enemies.get(i).unwrap_or(e);
-            self.crawler(&mut out, p.body.position.lerp(e.body.position, t), e);
+            self.crawler.instances(&mut out, (p, e), t, clock, i, lamp);
         }
         for p in state.pickups.iter().filter(|p| !p.taken) {
             // Turn slowly and glow faintly, so they can be found in the dark.
@@ -133,40 +136,6 @@ impl ActorMeshes {
         }
         out
     }
-
-    fn crawler(&self, out: &mut Vec<Instance>, position: Vec3, e: &crate::sim::Enemy) {
-        let facing = Quat::from_rotation_y(e.yaw);
-        let (pose, eyes_lit) = match e.mind {
-            // Lying on its back.
-            Mind::Dead => (Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2), 0.0),
-            // Rearing back to strike.
-            Mind::Attack => (Quat::from_rotation_x(0.35), 4.0),
-            Mind::Chase | Mind::Alert => (Quat::from_rotation_x(-0.25), 4.0),
-            Mind::Patrol | Mind::Search => (Quat::from_rotation_x(-0.35), 0.6),
-        };
-        let lift = if e.mind == Mind::Dead { enemy::body_config().radius } else { 0.0 };
-        let body = Mat4::from_rotation_translation(facing * pose, position + Vec3::Y * lift);
-        let flinch = e.flinch as f32 / 12.0;
-        let color = if e.mind == Mind::Dead { [0.25, 0.22, 0.2] } else { [0.62, 0.58, 0.52] };
-        out.push(Instance {
-            mesh: self.crawler,
-            transform: body,
-            base_color: color,
-            emissive: [0.6 * flinch, 0.0, 0.0],
-        });
-        if e.mind == Mind::Dead {
-            return;
-        }
-        for side in [-0.12, 0.12] {
-            let eye = body * Mat4::from_translation(Vec3::new(side, 1.28, -0.3));
-            out.push(Instance {
-                mesh: self.eye,
-                transform: eye,
-                base_color: [0.1; 3],
-                emissive: [eyes_lit, eyes_lit * 0.12, 0.0],
-            });
-        }
-    }
 }
 
 #[cfg(test)]
@@ -178,8 +147,7 @@ mod tests {
     #[test]
     fn a_medkit_wears_a_red_cross_and_ammo_does_not() {
         let meshes = ActorMeshes {
-            crawler: MeshId(0),
-            eye: MeshId(1),
+            crawler: CrawlerMeshes::fake(10),
             battery: MeshId(2),
             ammo: MeshId(3),
             medkit: MeshId(4),
@@ -196,7 +164,7 @@ mod tests {
             Pickup::spawn(&PickupSpawn { name: String::new(), kind, position: Vec3::new(x, 0.0, 0.0), amount: 1.0 })
         };
         state.pickups = vec![at(PickupKind::Ammo, 0.0), at(PickupKind::Health, 2.0)];
-        let instances = meshes.instances(sim.entities(), &state, &state, 1.0, 0.0);
+        let instances = meshes.instances(sim.entities(), &state, &state, 1.0, 0.0, &LampLight::OFF);
         let crosses: Vec<&Instance> = instances.iter().filter(|i| i.mesh == meshes.cross).collect();
         assert_eq!(crosses.len(), 1, "one cross, on the medkit only");
         let medkit = instances.iter().find(|i| i.mesh == meshes.medkit).unwrap();

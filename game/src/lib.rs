@@ -6,6 +6,7 @@ pub mod bench;
 pub mod check;
 pub mod cli;
 pub mod command_sampler;
+pub mod crawler_body;
 pub mod game_events;
 pub mod golden;
 pub mod level_list;

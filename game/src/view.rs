@@ -9,6 +9,7 @@ use engine::scene::Level;
 use engine::start_view::{initial_view, ViewOverrides};
 
 use crate::actors::ActorMeshes;
+use crate::crawler_body::LampLight;
 use crate::sim::command::radians;
 use crate::sim::{weapon, LevelEntities, WorldState};
 
@@ -78,7 +79,7 @@ impl WorldView {
         let flash = cur.weapon.flash as f32 / weapon::FLASH_TICKS as f32;
         view.camera_flash = FLASH_INTENSITY.map(|i| i * self.comfort.flash(flash));
         view.instances = match &self.meshes {
-            Some(m) => m.instances(entities, prev, cur, t, time),
+            Some(m) => m.instances(entities, prev, cur, t, time, &LampLight::of(view)),
             None => Vec::new(),
         };
     }

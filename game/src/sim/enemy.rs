@@ -38,6 +38,9 @@ pub const DAMAGE: f32 = 18.0;
 pub const SEARCH_TICKS: u16 = 240;
 /// Close enough to a waypoint or target, m.
 const ARRIVED: f32 = 0.5;
+/// Ground covered by one full cycle of a crawler's legs, m: [`Enemy::walked`] is kept modulo
+/// this, so the walk cycle it drives stays exact however long the game.
+pub const GAIT: f32 = 1.2;
 
 /// A crawler's body.
 pub fn body_config() -> CharacterConfig {
@@ -74,6 +77,9 @@ pub struct Enemy {
     pub waypoint: u16,
     /// Ticks left of the flinch shown after a hit.
     pub flinch: u8,
+    /// Ground covered so far (horizontally, as moved, walls included), m, modulo [`GAIT`]: the
+    /// phase of the walk cycle, so a replay's legs move exactly as they did.
+    pub walked: f32,
 }
 
 /// What the enemy perceives this tick, gathered by the simulation.
@@ -129,6 +135,7 @@ impl Enemy {
             target: s.position,
             waypoint: 0,
             flinch: 0,
+            walked: 0.0,
         }
     }
 
@@ -170,6 +177,13 @@ impl Enemy {
         }
     }
 
+    /// A tick passes: the flinch fades and the time in this state of mind runs (for a body, the
+    /// time since it fell, which its drawn fall follows).
+    pub fn age(&mut self) {
+        self.flinch = self.flinch.saturating_sub(1);
+        self.timer = self.timer.saturating_add(1);
+    }
+
     fn set_mind(&mut self, mind: Mind) {
         self.mind = mind;
         self.timer = 0;
@@ -201,8 +215,7 @@ impl Enemy {
         controller: &CharacterController,
         dt: f32,
     ) -> Deed {
-        self.flinch = self.flinch.saturating_sub(1);
-        self.timer = self.timer.saturating_add(1);
+        self.age();
         if self.mind == Mind::Dead {
             return Deed::Nothing;
         }
@@ -300,7 +313,12 @@ impl Enemy {
             wish += s.crowd * PATROL_SPEED;
         }
         let mv = CharacterMove { wish_velocity: wish, jump: false, crouch: false };
+        let before = self.body.position;
         controller.step(level, &mut self.body, &mv, dt);
+        self.walked += horizontal(self.body.position - before).length();
+        if self.walked >= GAIT {
+            self.walked -= GAIT * libm::floorf(self.walked / GAIT);
+        }
         deed
     }
 

@@ -66,6 +66,7 @@ pub fn world(s: &WorldState) -> u64 {
         h.vec3(e.target);
         h.bytes(&e.waypoint.to_le_bytes());
         h.bytes(&[e.flinch]);
+        h.f32(e.walked);
     }
     h.bytes(&(s.pickups.len() as u32).to_le_bytes());
     for p in &s.pickups {

@@ -207,12 +207,15 @@ impl Simulation {
         &self.world.entities
     }
 
-    /// Advances one tick. Once the level is won or lost only the tick count moves.
+    /// Advances one tick. Once the level is won or lost only the tick count moves, and the
+    /// bodies' clocks, so the crawler that ended it still finishes falling.
     pub fn step(&mut self, cmd: &TickCommand) {
         self.events.clear();
         let dt = 1.0 / self.tick_rate as f32;
         if self.state.outcome == Outcome::Playing {
             self.play(cmd, dt);
+        } else {
+            self.state.enemies.iter_mut().filter(|e| !e.alive()).for_each(Enemy::age);
         }
         self.state.tick += 1;
     }
