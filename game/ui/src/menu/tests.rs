@@ -470,8 +470,9 @@ fn the_pad_moves_through_a_menu_presses_and_goes_back() {
     h.menus.playing();
     h.menus.pause();
     h.settle();
-    // D-pad down twice: Resume, then Restart has the focus; A presses it.
-    for button in [PadButton::DPadDown, PadButton::DPadDown, PadButton::South] {
+    // D-pad down: the first tap wakes egui's keyboard focus, the next put it on Resume, then
+    // on Restart; A presses it.
+    for button in [PadButton::DPadDown, PadButton::DPadDown, PadButton::DPadDown, PadButton::South] {
         let (events, input) = pad_tap(button);
         let action = h.pass_with(events, &input);
         if button == PadButton::South {
