@@ -207,9 +207,11 @@ mod tests {
             (turn, look)
         };
         let (turn, look) = turn_over_a_second(60, false);
-        // Full right at sensitivity 1: half a turn a second (to the right: negative).
+        // Pushed to the rim at sensitivity 1: half a turn a second, shared between turning (to
+        // the right: negative) and looking in the direction of the push, (1, 0.5) normalised.
         let half_turn = -(angle_units(GamepadSettings::BASE_RADIANS_PER_SECOND)).round() as i32;
-        assert!((turn - half_turn).abs() <= 2, "{turn} vs {half_turn}");
+        let expected = (half_turn as f32 / 1.25f32.sqrt()).round() as i32;
+        assert!((turn - expected).abs() <= 2, "{turn} vs {expected}");
         assert!(look > 0, "pushing the stick away looks up");
         let (turn_20, look_20) = turn_over_a_second(20, false);
         assert!((turn_20 - turn).abs() <= 2 && (look_20 - look).abs() <= 2, "20 fps: {turn_20}, {look_20}");
