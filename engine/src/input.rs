@@ -1,6 +1,9 @@
-//! Keyboard and mouse state gathered from window events, read once per frame by the app.
+//! Keyboard, mouse and gamepad state gathered from window and pad events, read once per frame
+//! by the app.
 
 use glam::Vec2;
+
+use crate::gamepad::PadState;
 pub use winit::event::MouseButton;
 pub use winit::keyboard::KeyCode;
 
@@ -14,6 +17,8 @@ pub struct Input {
     pub mouse_delta: Vec2,
     /// The cursor is grabbed and hidden: mouse motion steers the view.
     pub captured: bool,
+    /// The gamepads (all connected pads together).
+    pub pad: PadState,
 }
 
 impl Input {
@@ -76,5 +81,6 @@ impl Input {
         self.pressed.clear();
         self.mouse_pressed.clear();
         self.mouse_delta = Vec2::ZERO;
+        self.pad.end_frame();
     }
 }

@@ -1,11 +1,13 @@
 //! Headlamp's engine: GPU context, render graph, scene assets, deferred renderer, headless
-//! output, the window loop and its egui UI layer, the fixed-tick clock and the replay container.
+//! output, the window loop and its egui UI layer, gamepads, the fixed-tick clock and the replay
+//! container.
 //! It knows nothing of any game.
 
 pub mod camera;
 pub mod clock;
 pub mod dynamic_resolution;
 pub mod frame;
+pub mod gamepad;
 pub mod globals;
 pub mod gpu;
 pub mod gpu_instances;

@@ -198,6 +198,18 @@ impl UiLayer {
         }
     }
 
+    /// A key pressed and released for the UI alone (a gamepad moving through a menu, see
+    /// [`crate::gamepad::menu_key`]); nothing while the mouse is captured for mouse look.
+    pub fn tap_key(&mut self, key: egui::Key, modifiers: egui::Modifiers) {
+        if self.captured {
+            return;
+        }
+        let events = &mut self.state.egui_input_mut().events;
+        for pressed in [true, false] {
+            events.push(egui::Event::Key { key, physical_key: None, pressed, repeat: false, modifiers });
+        }
+    }
+
     /// Runs one UI pass (`run_ui` may be called more than once if egui asks for it) and
     /// prepares its output for [`Self::paint`].
     pub fn frame(&mut self, window: &Window, mut run_ui: impl FnMut(&egui::Context)) {

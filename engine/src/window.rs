@@ -18,6 +18,7 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{CursorGrabMode, Window, WindowId};
 
+use crate::gamepad::Gamepads;
 use crate::gpu::Gpu;
 use crate::input::{Input, MouseButton};
 use crate::ui::UiLayer;
@@ -71,6 +72,7 @@ pub fn run<A: WindowApp>(title: &str, app: &mut A) -> anyhow::Result<()> {
         error: None,
         capture: None,
         focused: true,
+        pads: Gamepads::start(),
     };
     event_loop.run_app(&mut runner).context("window event loop failed")?;
     match runner.error {
@@ -102,6 +104,7 @@ struct Runner<'a, A: WindowApp> {
     /// The app's last [`WindowApp::capture_wanted`].
     capture: Option<bool>,
     focused: bool,
+    pads: Gamepads,
 }
 
 impl<A: WindowApp> Runner<'_, A> {
@@ -161,6 +164,7 @@ impl<A: WindowApp> Runner<'_, A> {
         let now = Instant::now();
         let dt = (now - self.last).as_secs_f32().min(0.25);
         self.last = now;
+        self.poll_pads();
         self.app.update(&self.input, dt);
         if self.app.release_mouse_requested() && self.input.captured {
             self.set_captured(false);
@@ -222,6 +226,21 @@ impl<A: WindowApp> Runner<'_, A> {
             anyhow::bail!("the GPU failed drawing a frame: {e}");
         }
         Ok(())
+    }
+
+    /// Gamepad events since the last frame into [`Input::pad`]; while the UI has the screen
+    /// (mouse not captured) the buttons that move through menus also reach it as keys.
+    fn poll_pads(&mut self) {
+        for event in self.pads.poll() {
+            let before = self.input.pad.pressed_buttons().len();
+            self.input.pad.apply(event);
+            let Some(state) = &mut self.state else { continue };
+            for &button in &self.input.pad.pressed_buttons()[before..] {
+                if let Some((key, modifiers)) = crate::gamepad::menu_key(button) {
+                    state.ui.tap_key(key, modifiers);
+                }
+            }
+        }
     }
 
     fn fail(&mut self, event_loop: &ActiveEventLoop, e: anyhow::Error) {

@@ -9,6 +9,7 @@ use engine::camera::CameraProjection;
 use engine::clock::FixedClock;
 use engine::dynamic_resolution::DynamicResolution;
 use engine::egui;
+use engine::gamepad::PadButton;
 use engine::gpu::Gpu;
 use engine::input::{Input, KeyCode};
 use engine::renderer::Renderer;
@@ -126,7 +127,8 @@ pub enum TickSource {
 
 impl TickSource {
     pub fn live(config: &Config, recorder: Option<Recorder>) -> Self {
-        let sampler = CommandSampler::new(config.radians_per_pixel(), config.invert_y, config.bindings.clone());
+        let mut sampler = CommandSampler::new(config.radians_per_pixel(), config.invert_y, config.bindings.clone());
+        sampler.pad = config.gamepad.clone();
         TickSource::Live { sampler, recorder }
     }
 }
@@ -246,7 +248,7 @@ impl GameWindow {
     /// Runs the ticks this frame's time pays for.
     fn run_ticks(&mut self, input: &Input, dt: f32) {
         if let TickSource::Live { sampler, .. } = &mut self.source {
-            sampler.gather(input);
+            sampler.gather(input, dt);
         }
         self.ticks_this_frame = 0;
         for _ in 0..self.clock.advance(dt) {
@@ -310,6 +312,7 @@ impl GameWindow {
             sampler.sensitivity = self.config.radians_per_pixel();
             sampler.invert_y = self.config.invert_y;
             sampler.bindings = self.config.bindings.clone();
+            sampler.pad = self.config.gamepad.clone();
         }
         self.view.view.camera.projection = CameraProjection::Perspective { fov_y: self.config.fov_deg.to_radians() };
         self.view.comfort = crate::view::Comfort::of(&self.config);
@@ -426,19 +429,34 @@ impl GameWindow {
     fn lamp_hint(&self) -> Option<String> {
         use game_ui::Action;
         let s = &self.sim.state;
+        // With a pad connected, its buttons are named.
+        let pad = self.input.pad.connected() > 0;
         let key = |a: Action| {
-            self.config.bindings.get(a)[0].map(|b| b.label().into_owned()).unwrap_or_else(|| "(unbound)".into())
+            let label = if pad {
+                self.config.gamepad.bindings.get(a).map(|b| game_ui::pad_bindings::button_label(b).to_owned())
+            } else {
+                self.config.bindings.get(a)[0].map(|b| b.label().into_owned())
+            };
+            label.unwrap_or_else(|| "(unbound)".into())
         };
         if s.tick < CONTROLS_HINT_TICKS && s.lamp.attached {
-            let moves = [Action::MoveForward, Action::StrafeLeft, Action::MoveBack, Action::StrafeRight].map(key);
+            let (moves, menu) = if pad {
+                ("Left stick".to_owned(), "Start")
+            } else {
+                (
+                    [Action::MoveForward, Action::StrafeLeft, Action::MoveBack, Action::StrafeRight].map(key).concat(),
+                    "Esc",
+                )
+            };
             return Some(format!(
-                "{} move · {} fire · {} reload · {} lamp on/off · {} set lamp down · {} throw lamp · Esc menu",
-                moves.concat(),
+                "{} move · {} fire · {} reload · {} lamp on/off · {} set lamp down · {} throw lamp · {} menu",
+                moves,
                 key(Action::Fire),
                 key(Action::Reload),
                 key(Action::LampToggle),
                 key(Action::LampDetach),
                 key(Action::LampThrow),
+                menu,
             ));
         }
         if !s.lamp.attached {
@@ -572,7 +590,7 @@ impl WindowApp for GameWindow {
             self.ticks_this_frame = 0;
             return; // paused: no time passes in the world
         }
-        if input.pressed(KeyCode::Escape) {
+        if input.pressed(KeyCode::Escape) || input.pad.pressed(PadButton::Start) {
             self.menus.pause();
             if let TickSource::Live { sampler, .. } = &mut self.source {
                 sampler.clear();

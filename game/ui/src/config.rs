@@ -19,6 +19,7 @@ use std::path::{Path, PathBuf};
 use plugin_gi::GiSettings;
 
 use crate::bindings::KeyBindings;
+use crate::pad_bindings::GamepadSettings;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Config {
@@ -38,6 +39,8 @@ pub struct Config {
     /// The frame-rate counter in a corner.
     pub show_fps: bool,
     pub bindings: KeyBindings,
+    /// The gamepad's buttons, look speed and dead zone (look follows `invert_y` too).
+    pub gamepad: GamepadSettings,
     pub gi: GiSettings,
     /// Picture brightness in stops (exposure × 2^brightness), in [`Config::BRIGHTNESS_RANGE`].
     pub brightness: f32,
@@ -66,6 +69,7 @@ impl Default for Config {
             vsync: true,
             show_fps: false,
             bindings: KeyBindings::default(),
+            gamepad: GamepadSettings::default(),
             gi: GiSettings::default(),
             brightness: 0.0,
             calibrated: false,

@@ -6,12 +6,14 @@ use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::ops::{Range, RangeInclusive};
 
+use engine::gamepad::PadButton;
 use plugin_gi::GiSettings;
 use serde::Deserialize;
 use toml::{Spanned, Value};
 
 use super::Config;
 use crate::bindings::{Action, Binding, KeyBindings, SLOTS};
+use crate::pad_bindings::{self, GamepadSettings, PadBindings};
 
 /// A problem found in the text; [`super::ConfigError`] adds the file.
 pub(super) struct ParseError {
@@ -20,9 +22,10 @@ pub(super) struct ParseError {
     pub problem: String,
 }
 
-const SECTIONS: [&str; 5] = ["controls", "video", "comfort", "bindings", "gi"];
+const SECTIONS: [&str; 7] = ["controls", "video", "comfort", "bindings", "gamepad", "gamepad_bindings", "gi"];
 const COMFORT: [&str; 6] = ["brightness", "calibrated", "reduce_flashing", "captions", "hud_scale", "crosshair_scale"];
 const CONTROLS: [&str; 3] = ["sensitivity", "invert_y", "fov_deg"];
+const GAMEPAD: [&str; 2] = ["look_sensitivity", "dead_zone"];
 const VIDEO: [&str; 5] = ["render_scale", "dynamic_resolution", "target_fps", "vsync", "show_fps"];
 
 pub(super) fn write(c: &Config) -> String {
@@ -97,6 +100,7 @@ pub(super) fn write(c: &Config) -> String {
         let names: Vec<String> = c.bindings.bindings(action).map(|b| format!("\"{b}\"")).collect();
         let _ = writeln!(out, "{} = [{}]", action.name(), names.join(", "));
     }
+    write_gamepad(&mut out, &c.gamepad);
     let _ = write!(out, "\n[gi]\n# global illumination\nenabled = {}\n", c.gi.enabled);
     for field in GiSettings::FIELDS {
         let v = c.gi.get(field.name).expect("every entry of GiSettings::FIELDS has a value");
@@ -126,6 +130,10 @@ struct Sections {
     comfort: Entries,
     #[serde(default)]
     bindings: Entries,
+    #[serde(default)]
+    gamepad: Entries,
+    #[serde(default)]
+    gamepad_bindings: Entries,
     #[serde(default)]
     gi: Entries,
 }
@@ -191,6 +199,17 @@ pub(super) fn parse(text: &str) -> Result<Config, ParseError> {
         set.map_err(|problem| error(key, "comfort", problem))?;
     }
     c.bindings = bindings(&sections.bindings, &error)?;
+    for (key, value) in by_position(&sections.gamepad) {
+        let value = value.get_ref();
+        let pad = &mut c.gamepad;
+        let set = match key.get_ref().as_str() {
+            "look_sensitivity" => number(value, &GamepadSettings::SENSITIVITY_RANGE).map(|v| pad.look_sensitivity = v),
+            "dead_zone" => number(value, &GamepadSettings::DEAD_ZONE_RANGE).map(|v| pad.dead_zone = v),
+            _ => Err(unknown(&GAMEPAD)),
+        };
+        set.map_err(|problem| error(key, "gamepad", problem))?;
+    }
+    c.gamepad.bindings = pad_bindings(&sections.gamepad_bindings, &error)?;
     for (key, value) in by_position(&sections.gi) {
         gi_setting(&mut c.gi, key.get_ref(), value.get_ref()).map_err(|problem| error(key, "gi", problem))?;
     }
@@ -247,6 +266,88 @@ fn bindings(
                 result.replace(action, &kept);
             }
         }
+    }
+    Ok(result)
+}
+
+fn write_gamepad(out: &mut String, pad: &GamepadSettings) {
+    let range = |r: &RangeInclusive<f32>| format!("{:?} to {:?}", r.start(), r.end());
+    let names: Vec<&str> =
+        PadButton::ALL.into_iter().filter(|b| pad_bindings::is_bindable(*b)).map(pad_bindings::button_name).collect();
+    let _ = write!(
+        out,
+        "\n[gamepad]\n\
+         # right-stick turn speed, 1.0 = {base:.4} radians per second at full deflection ({sens})\n\
+         look_sensitivity = {:?}\n\
+         # stick travel ignored around the centre, as a fraction of it ({dead})\n\
+         dead_zone = {:?}\n\
+         \n\
+         [gamepad_bindings]\n\
+         # One pad button per action, [] for none. The left stick walks, the right stick looks,\n\
+         # Start pauses. Buttons by position: {}.\n",
+        pad.look_sensitivity,
+        pad.dead_zone,
+        names.join(", "),
+        base = GamepadSettings::BASE_RADIANS_PER_SECOND,
+        sens = range(&GamepadSettings::SENSITIVITY_RANGE),
+        dead = range(&GamepadSettings::DEAD_ZONE_RANGE),
+    );
+    for action in Action::ALL {
+        let button = pad.bindings.get(action).map(|b| format!("\"{}\"", pad_bindings::button_name(b)));
+        let _ = writeln!(out, "{} = [{}]", action.name(), button.unwrap_or_default());
+    }
+}
+
+/// Like [`bindings`], with one button per action: listed actions take what is listed (`[]`
+/// unbinds), the others keep their defaults unless a listed action took their button.
+fn pad_bindings(
+    entries: &Entries,
+    error: &impl Fn(&Spanned<String>, &str, String) -> ParseError,
+) -> Result<PadBindings, ParseError> {
+    let mut listed: Vec<(Action, Option<PadButton>)> = Vec::new();
+    for (key, value) in by_position(entries) {
+        let fail = |problem: String| error(key, "gamepad_bindings", problem);
+        let Some(action) = Action::from_name(key.get_ref()) else {
+            let names: Vec<&str> = Action::ALL.iter().map(|a| a.name()).collect();
+            return Err(fail(unknown(&names)));
+        };
+        let names: Vec<&str> = match value.get_ref() {
+            Value::String(name) => vec![name],
+            Value::Array(items) => items
+                .iter()
+                .map(|v| {
+                    v.as_str()
+                        .ok_or_else(|| format!("expected a name in quotes, like \"South\", found {}", v.type_str()))
+                })
+                .collect::<Result<_, _>>()
+                .map_err(&fail)?,
+            other => {
+                return Err(fail(format!(
+                    "expected a list of one gamepad button like [\"South\"] or [], found {}",
+                    other.type_str()
+                )))
+            }
+        };
+        let button = match names.as_slice() {
+            [] => None,
+            [name] => Some(pad_bindings::parse_button(name).map_err(|e| fail(e.to_string()))?),
+            more => return Err(fail(format!("one gamepad button per action, found {}", more.len()))),
+        };
+        if let Some(b) = button {
+            if let Some((other, _)) = listed.iter().find(|(_, l)| *l == Some(b)) {
+                let name = pad_bindings::button_name(b);
+                return Err(fail(format!("'{name}' is also bound to {}; a button does one thing", other.name())));
+            }
+        }
+        listed.push((action, button));
+    }
+    let mut result = PadBindings::default();
+    for action in Action::ALL {
+        let button = match listed.iter().find(|(a, _)| *a == action) {
+            Some((_, b)) => *b,
+            None => result.get(action).filter(|b| !listed.iter().any(|(_, l)| *l == Some(*b))),
+        };
+        result.replace(action, button);
     }
     Ok(result)
 }

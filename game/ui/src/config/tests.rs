@@ -2,11 +2,13 @@ use std::ffi::OsString;
 use std::fs;
 use std::path::{Path, PathBuf};
 
+use engine::gamepad::PadButton;
 use engine::input::{KeyCode, MouseButton};
 use plugin_gi::GiSettings;
 
 use super::{config_path_from, Config, ConfigError};
 use crate::bindings::{Action, Binding, KeyBindings};
+use crate::pad_bindings::{GamepadSettings, PadBindings};
 
 /// A fresh, empty folder of the test's own.
 fn scratch(name: &str) -> PathBuf {
@@ -27,6 +29,12 @@ fn changed() -> Config {
     bindings.set(Action::Fire, 1, Binding::Key(KeyCode::Tab));
     bindings.set(Action::MoveForward, 0, Binding::Key(KeyCode::ArrowUp));
     bindings.clear(Action::Crouch, 1);
+    let mut pad = PadBindings::default();
+    pad.set(Action::Fire, PadButton::LeftTrigger).unwrap();
+    pad.set(Action::MoveForward, PadButton::DPadUp).unwrap();
+    pad.set(Action::Jump, PadButton::RightBumper).unwrap();
+    pad.clear(Action::Crouch);
+    let gamepad = GamepadSettings { look_sensitivity: 2.25, dead_zone: 0.3, bindings: pad };
     let gi = GiSettings {
         enabled: false,
         merge_normal_deg: 12.5,
@@ -47,6 +55,7 @@ fn changed() -> Config {
         vsync: false,
         show_fps: true,
         bindings,
+        gamepad,
         gi,
         brightness: 0.7,
         calibrated: true,
@@ -74,6 +83,11 @@ fn every_setting_survives_save_and_load() {
         assert_ne!(c.gi.get(field.name), d.gi.get(field.name), "gi.{}", field.name);
     }
     assert_ne!(c.gi.enabled, d.gi.enabled);
+    let (p, q) = (&c.gamepad, &d.gamepad);
+    assert!(p.look_sensitivity != q.look_sensitivity && p.dead_zone != q.dead_zone);
+    for action in [Action::Fire, Action::MoveForward, Action::Jump, Action::Crouch, Action::LampThrow] {
+        assert_ne!(p.bindings.get(action), q.bindings.get(action), "{action:?}");
+    }
 
     let dir = scratch("round-trip");
     let path = dir.join("nested/headlamp/config.toml");
@@ -277,4 +291,39 @@ fn comfort_settings_are_checked_and_placed() {
     let c = Config::from_toml("[comfort]\nbrightness = -1.5\n", Path::new("c.toml")).unwrap();
     assert_eq!((c.brightness, c.calibrated), (-1.5, false));
     assert!((c.exposure_scale() - 0.3536).abs() < 1e-3, "-1.5 stops: {}", c.exposure_scale());
+}
+
+#[test]
+fn gamepad_settings_are_written_read_and_checked() {
+    let text = Config::default().to_toml();
+    for expected in ["[gamepad]\n", "dead_zone = 0.15\n", "[gamepad_bindings]\n", "Fire = [\"RightTrigger\"]\n"] {
+        assert!(text.contains(expected), "{expected:?} in\n{text}");
+    }
+    assert!(text.contains("MoveForward = []\n"), "walking has no button: {text}");
+    // Like key bindings: a listed action takes what is listed; the others keep their defaults,
+    // less a button a listed one took.
+    let c = Config::from_toml("[gamepad_bindings]\nReload = \"North\"\nJump = []\n", Path::new("c.toml")).unwrap();
+    assert_eq!(c.gamepad.bindings.get(Action::Reload), Some(PadButton::North));
+    assert_eq!(c.gamepad.bindings.get(Action::LampToggle), None, "North went to Reload");
+    assert_eq!(c.gamepad.bindings.get(Action::Jump), None);
+    assert_eq!(c.gamepad.bindings.get(Action::Fire), Some(PadButton::RightTrigger));
+
+    let e = parse_err("[gamepad]\ndead_zone = 0.9\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(2), Some("gamepad.dead_zone")), "{e}");
+    assert!(e.problem.contains("out of range (0.0 to 0.5)"), "{e}");
+    let e = parse_err("[gamepad]\nlook_sensitivity = 1.0\ninvert = true\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(3), Some("gamepad.invert")), "{e}");
+    assert!(e.problem.contains("look_sensitivity, dead_zone"), "{e}");
+    let e = parse_err("[gamepad_bindings]\nFire = [\"Start\"]\n");
+    assert_eq!(e.key.as_deref(), Some("gamepad_bindings.Fire"), "{e}");
+    assert!(e.problem.contains("unknown gamepad button 'Start'"), "Start pauses: {e}");
+    let e = parse_err("[gamepad_bindings]\nFire = [\"South\", \"East\"]\n");
+    assert!(e.problem.contains("one gamepad button per action"), "{e}");
+    let e = parse_err("[gamepad_bindings]\nFire = [\"South\"]\n\nJump = \"South\"\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(4), Some("gamepad_bindings.Jump")), "{e}");
+    assert!(e.problem.contains("also bound to Fire"), "{e}");
+    let e = parse_err("[gamepad_bindings]\nShoot = [\"South\"]\n");
+    assert!(e.problem.contains("MoveForward"), "lists the actions: {e}");
+    let e = parse_err("[gamepad_bindings]\nFire = 7\n");
+    assert!(e.problem.contains("found integer"), "{e}");
 }

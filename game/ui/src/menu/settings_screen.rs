@@ -1,9 +1,10 @@
-//! The Settings screen: tabs for controls, key bindings, video and global illumination. It
-//! edits the [`Config`] in place; the menu reports any change to the game.
+//! The Settings screen: tabs for controls, key bindings, the gamepad, video and global
+//! illumination. It edits the [`Config`] in place; the menu reports any change to the game.
 //!
 //! Rebinding: clicking a binding cell makes it wait ("press a key…"); the next key or mouse
 //! button sets it, Esc cancels. While a cell waits everything else is disabled, so the click
-//! that sets a mouse button cannot also press another widget.
+//! that sets a mouse button cannot also press another widget. A gamepad cell waits for a pad
+//! button ("press a button…"); Start or Esc cancels.
 
 use engine::egui::{self, Color32, RichText};
 use engine::input::Input;
@@ -12,23 +13,26 @@ use super::panel;
 use crate::bindings::{Action, Binding, SLOTS};
 use crate::config::Config;
 use crate::gi_panel;
+use crate::pad_bindings::{self, GamepadSettings};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 enum Tab {
     #[default]
     Controls,
     Bindings,
+    Gamepad,
     Video,
     Gi,
 }
 
 impl Tab {
-    const ALL: [Tab; 4] = [Tab::Controls, Tab::Bindings, Tab::Video, Tab::Gi];
+    const ALL: [Tab; 5] = [Tab::Controls, Tab::Bindings, Tab::Gamepad, Tab::Video, Tab::Gi];
 
     fn label(self) -> &'static str {
         match self {
             Tab::Controls => "Controls",
             Tab::Bindings => "Key bindings",
+            Tab::Gamepad => "Gamepad",
             Tab::Video => "Video",
             Tab::Gi => "Global illumination",
         }
@@ -37,6 +41,8 @@ impl Tab {
 
 /// The text of a cell waiting for a key.
 pub const WAITING: &str = "press a key…";
+/// The text of a gamepad cell waiting for a button.
+pub const WAITING_PAD: &str = "press a button…";
 /// The text of an empty binding cell.
 pub const UNBOUND: &str = "—";
 /// Sliders are this wide, so tests know where a slider's rail is.
@@ -49,6 +55,8 @@ pub(super) struct SettingsScreen {
     tab: Tab,
     /// The binding cell waiting for a key: action and slot.
     waiting: Option<(Action, usize)>,
+    /// The gamepad cell waiting for a pad button.
+    waiting_pad: Option<Action>,
     /// What the last rebinding did, above all when it took the key from another action.
     notice: Option<String>,
 }
@@ -57,6 +65,7 @@ impl SettingsScreen {
     /// Entering the screen: nothing half-done from last time.
     pub fn open(&mut self) {
         self.waiting = None;
+        self.waiting_pad = None;
         self.notice = None;
     }
 
@@ -71,10 +80,21 @@ impl SettingsScreen {
                 let taken_from = config.bindings.set(action, slot, binding);
                 self.notice = Some(rebind_notice(config, action, binding, taken_from));
             }
+        } else if let Some(action) = self.waiting_pad {
+            // The pad's buttons first: East also reaches the menus as Esc (it goes back), yet
+            // may be bound; Start may not, and cancels.
+            let button = input.pad.pressed_buttons().iter().copied().find(|b| pad_bindings::is_bindable(*b));
+            if let Some(button) = button {
+                self.waiting_pad = None;
+                let taken_from = config.gamepad.bindings.set(action, button).ok().flatten();
+                self.notice = Some(pad_rebind_notice(action, pad_bindings::button_label(button), taken_from));
+            } else if esc || input.pad.pressed(engine::gamepad::PadButton::Start) {
+                self.waiting_pad = None;
+            }
         } else if esc {
             return true;
         }
-        let idle = self.waiting.is_none();
+        let idle = self.waiting.is_none() && self.waiting_pad.is_none();
         let mut back = false;
         panel(ctx, "settings", |ui| {
             ui.set_width(560.0);
@@ -107,6 +127,7 @@ impl SettingsScreen {
                     match self.tab {
                         Tab::Controls => controls(ui, config),
                         Tab::Bindings => self.bindings(ui, config),
+                        Tab::Gamepad => self.gamepad(ui, config),
                         Tab::Video => video(ui, config),
                         Tab::Gi => {
                             gi_panel::sliders(ui, &mut config.gi);
@@ -119,6 +140,72 @@ impl SettingsScreen {
             back = ui.add_enabled(idle, egui::Button::new(RichText::new("Back").size(18.0))).clicked();
         });
         back
+    }
+
+    fn gamepad(&mut self, ui: &mut egui::Ui, config: &mut Config) {
+        let idle = self.waiting_pad.is_none();
+        let pad = &mut config.gamepad;
+        ui.add_enabled_ui(idle, |ui| {
+            let look = egui::Slider::new(&mut pad.look_sensitivity, GamepadSettings::SENSITIVITY_RANGE)
+                .logarithmic(true)
+                .fixed_decimals(2)
+                .text("Look sensitivity");
+            ui.add(look).on_hover_text(format!(
+                "1.00 turns the view {:.2} radians a second with the right stick pushed all the way",
+                GamepadSettings::BASE_RADIANS_PER_SECOND
+            ));
+            let dead = egui::Slider::new(&mut pad.dead_zone, GamepadSettings::DEAD_ZONE_RANGE)
+                .custom_formatter(|v, _| format!("{:.0}%", v * 100.0))
+                .custom_parser(|s| s.trim().trim_end_matches('%').trim().parse::<f64>().ok().map(|p| p / 100.0))
+                .text("Stick dead zone");
+            ui.add(dead).on_hover_text("how far a stick moves before it counts: raise it if the view drifts");
+        });
+        let help = if idle {
+            "The left stick walks, the right stick looks (Invert mouse Y in Controls turns it over too), \
+             Start pauses. Click a button's cell, then press a pad button. Right-click clears it."
+        } else {
+            "Press a button on the gamepad for it; Start or Esc cancels."
+        };
+        ui.label(RichText::new(help).weak());
+        if let Some(notice) = &self.notice {
+            ui.label(RichText::new(notice).color(NOTICE));
+        }
+        if ui.add_enabled(idle, egui::Button::new("Reset gamepad to defaults")).clicked() {
+            *pad = GamepadSettings::default();
+            self.notice = Some("The gamepad's buttons and sticks are back to their defaults.".into());
+        }
+        ui.add_space(6.0);
+        egui::Grid::new("pad bindings").num_columns(2).spacing([12.0, 4.0]).striped(true).show(ui, |ui| {
+            ui.label(RichText::new("Action").strong());
+            ui.label(RichText::new("Gamepad").strong());
+            ui.end_row();
+            for action in Action::ALL {
+                ui.label(action.label());
+                if self.waiting_pad == Some(action) {
+                    let cell = egui::Button::new(RichText::new(WAITING_PAD).color(Color32::BLACK))
+                        .fill(NOTICE)
+                        .sense(egui::Sense::hover())
+                        .min_size(egui::vec2(CELL_WIDTH, 0.0));
+                    ui.add(cell);
+                    ui.end_row();
+                    continue;
+                }
+                let bound = pad.bindings.get(action);
+                let text = bound.map_or(UNBOUND, pad_bindings::button_label);
+                let cell = egui::Button::new(text).min_size(egui::vec2(CELL_WIDTH, 0.0));
+                let response =
+                    ui.add_enabled(idle, cell).on_hover_text("click, then press a pad button; right-click clears");
+                if response.clicked() {
+                    self.waiting_pad = Some(action);
+                    self.notice = None;
+                }
+                if response.secondary_clicked() && bound.is_some() {
+                    pad.bindings.clear(action);
+                    self.notice = Some(format!("{text} no longer does {}.", action.label()));
+                }
+                ui.end_row();
+            }
+        });
     }
 
     fn bindings(&mut self, ui: &mut egui::Ui, config: &mut Config) {
@@ -264,5 +351,12 @@ fn rebind_notice(config: &Config, action: Action, binding: Binding, taken_from: 
         }
         Some(other) => format!("{key} now does {}; it was taken from {}.", action.label(), other.label()),
         None => format!("{key} now does {}.", action.label()),
+    }
+}
+
+fn pad_rebind_notice(action: Action, button: &str, taken_from: Option<Action>) -> String {
+    match taken_from {
+        Some(other) => format!("{button} now does {}; it was taken from {}.", action.label(), other.label()),
+        None => format!("{button} now does {}.", action.label()),
     }
 }

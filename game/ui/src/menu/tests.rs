@@ -1,7 +1,8 @@
 use engine::egui::{self, Rect};
+use engine::gamepad::{menu_key, PadButton, PadEvent};
 use engine::input::{Input, KeyCode, MouseButton};
 
-use super::settings_screen::{SLIDER_WIDTH, UNBOUND, WAITING};
+use super::settings_screen::{SLIDER_WIDTH, UNBOUND, WAITING, WAITING_PAD};
 use super::{MenuAction, Menus, Screen};
 use crate::bindings::{Action, Binding, KeyBindings};
 use crate::config::Config;
@@ -108,6 +109,26 @@ impl Harness {
         assert_eq!(self.menus.screen(), Screen::Settings);
         assert_eq!(self.click(tab), None, "changing tabs changes no setting");
     }
+}
+
+/// A fake pad's button going down this frame, as the game's input has it.
+fn pad_press(button: PadButton) -> Input {
+    let mut input = Input::default();
+    input.pad.apply(PadEvent::Button(0, button, 1.0));
+    input
+}
+
+/// The egui keys the window loop taps for a pad button while a menu is up, and the game's
+/// input with the press: what one pass sees of it.
+fn pad_tap(button: PadButton) -> (Vec<egui::Event>, Input) {
+    let events = menu_key(button)
+        .map(|(key, modifiers)| {
+            [true, false]
+                .map(|pressed| egui::Event::Key { key, physical_key: None, pressed, repeat: false, modifiers })
+                .to_vec()
+        })
+        .unwrap_or_default();
+    (events, pad_press(button))
 }
 
 fn key(code: KeyCode) -> Input {
@@ -441,4 +462,77 @@ fn the_brightness_screen_sets_brightness_then_goes_to_the_main_menu() {
     assert_eq!(h.click("Done"), Some(MenuAction::ConfigChanged));
     assert!(h.config.calibrated);
     assert_eq!(h.menus.screen(), Screen::MainMenu);
+}
+
+#[test]
+fn the_pad_moves_through_a_menu_presses_and_goes_back() {
+    let mut h = Harness::new();
+    h.menus.playing();
+    h.menus.pause();
+    h.settle();
+    // D-pad down: the first tap wakes egui's keyboard focus, the next put it on Resume, then
+    // on Restart; A presses it.
+    for button in [PadButton::DPadDown, PadButton::DPadDown, PadButton::DPadDown, PadButton::South] {
+        let (events, input) = pad_tap(button);
+        let action = h.pass_with(events, &input);
+        if button == PadButton::South {
+            assert_eq!(action, Some(MenuAction::Restart));
+        } else {
+            assert_eq!(action, None);
+        }
+    }
+    // B (as Esc) resumes from the pause menu, and goes back from Settings.
+    h.menus.pause();
+    h.settle();
+    let (events, input) = pad_tap(PadButton::DPadDown);
+    h.pass_with(events, &input);
+    let (events, input) = pad_tap(PadButton::East);
+    assert_eq!(h.pass_with(events, &input), Some(MenuAction::Resume));
+    h.menus.pause();
+    h.settle();
+    h.click("Settings");
+    let (events, input) = pad_tap(PadButton::Start);
+    assert_eq!(h.pass_with(events, &input), None);
+    assert_eq!(h.menus.screen(), Screen::Paused);
+}
+
+#[test]
+fn a_gamepad_cell_waits_for_a_pad_button() {
+    let mut h = Harness::new();
+    h.open_settings_tab("Gamepad");
+    assert!(h.shows("RT") && h.shows("A (bottom)"), "{:?}", h.shown);
+    let fire = h.rect(Action::Fire.label());
+    let cell = |h: &Harness| {
+        h.shown
+            .iter()
+            .find(|(_, r)| (r.center().y - fire.center().y).abs() < 6.0 && r.left() > fire.right())
+            .map(|(_, r)| *r)
+            .expect("Fire's gamepad cell")
+    };
+    h.click_at(cell(&h).center(), egui::PointerButton::Primary);
+    h.settle();
+    assert!(h.shows(WAITING_PAD));
+    // A key does not bind here; B does, though it is Esc to the menus, and it leaves Crouch.
+    assert_eq!(h.pass_with(Vec::new(), &key(KeyCode::KeyK)), None);
+    let (events, input) = pad_tap(PadButton::East);
+    assert_eq!(h.pass_with(events, &input), Some(MenuAction::ConfigChanged));
+    assert_eq!(h.config.gamepad.bindings.get(Action::Fire), Some(PadButton::East));
+    assert_eq!(h.config.gamepad.bindings.get(Action::Crouch), None);
+    assert_eq!(h.menus.screen(), Screen::Settings, "the B that bound did not also go back");
+    h.settle();
+    assert!(h.shows("B (right) now does Fire; it was taken from Crouch."), "{:?}", h.shown);
+    // Start cancels a waiting cell and binds nothing.
+    h.click_at(cell(&h).center(), egui::PointerButton::Primary);
+    h.settle();
+    let (events, input) = pad_tap(PadButton::Start);
+    assert_eq!(h.pass_with(events, &input), None);
+    assert_eq!(h.menus.screen(), Screen::Settings, "the first Start only cancels");
+    h.settle();
+    assert!(!h.shows(WAITING_PAD));
+    // Right-click clears; reset brings the defaults back.
+    assert_eq!(h.click_at(cell(&h).center(), egui::PointerButton::Secondary), Some(MenuAction::ConfigChanged));
+    assert_eq!(h.config.gamepad.bindings.get(Action::Fire), None);
+    h.settle();
+    assert_eq!(h.click("Reset gamepad to defaults"), Some(MenuAction::ConfigChanged));
+    assert_eq!(h.config.gamepad, crate::GamepadSettings::default());
 }
