@@ -38,6 +38,9 @@ pub const DAMAGE: f32 = 18.0;
 pub const SEARCH_TICKS: u16 = 240;
 /// Close enough to a waypoint or target, m.
 const ARRIVED: f32 = 0.5;
+/// Ticks between a crawler's breaths: slow while it wanders, quick while it hunts.
+pub const BREATH_CALM: u32 = 150;
+pub const BREATH_HUNTING: u32 = 70;
 
 /// A crawler's body.
 pub fn body_config() -> CharacterConfig {
@@ -134,6 +137,17 @@ impl Enemy {
 
     pub fn alive(&self) -> bool {
         self.mind != Mind::Dead
+    }
+
+    /// Whether crawler `index` (its place in the level's list) draws a breath on `tick`: each
+    /// its own beat, offset by its index so a pack does not breathe in unison.
+    pub fn breathes(&self, tick: u32, index: usize) -> bool {
+        let period = match self.mind {
+            Mind::Dead => return false,
+            Mind::Patrol | Mind::Search => BREATH_CALM,
+            Mind::Alert | Mind::Chase | Mind::Attack => BREATH_HUNTING,
+        };
+        (tick + index as u32 * 37) % period == 0
     }
 
     /// Eye height of a crawler, m above its feet.
