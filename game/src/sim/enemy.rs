@@ -147,7 +147,7 @@ impl Enemy {
             Mind::Patrol | Mind::Search => BREATH_CALM,
             Mind::Alert | Mind::Chase | Mind::Attack => BREATH_HUNTING,
         };
-        (tick + index as u32 * 37) % period == 0
+        (tick + index as u32 * 37).is_multiple_of(period)
     }
 
     /// Eye height of a crawler, m above its feet.

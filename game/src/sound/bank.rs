@@ -134,14 +134,14 @@ impl SoundId {
 fn shaped(n: &mut Noise, seconds: f32, mut filter: Biquad, env: impl Fn(f32) -> f32) -> Vec<f32> {
     let mut s = blank(seconds);
     for (i, v) in s.iter_mut().enumerate() {
-        *v = filter.run(n.next()) * env(time(i));
+        *v = filter.run(n.sample()) * env(time(i));
     }
     s
 }
 
 /// A tone gliding along `hz(t)`, shaped by `env`.
 fn tone(seconds: f32, hz: impl Fn(f32) -> f32, env: impl Fn(f32) -> f32) -> Vec<f32> {
-    let mut osc = Osc::new();
+    let mut osc = Osc::default();
     (0..blank(seconds).len()).map(|i| osc.sine(hz(time(i))) * env(time(i))).collect()
 }
 
@@ -223,7 +223,7 @@ fn whoosh(n: &mut Noise, seconds: f32) -> Vec<f32> {
         if i % 64 == 0 {
             f = Biquad::bandpass(hz, 1.0);
         }
-        *v = f.run(n.next()) * swell(t, seconds * 0.5, seconds * 0.5, seconds);
+        *v = f.run(n.sample()) * swell(t, seconds * 0.5, seconds * 0.5, seconds);
     }
     s
 }
@@ -264,7 +264,7 @@ fn ricochet(n: &mut Noise) -> Vec<f32> {
 /// A blow taken: a dull hit and a short grunt (a voice-like buzz through a vowel's band).
 fn player_hurt(n: &mut Noise) -> Vec<f32> {
     let mut s = shaped(n, 0.4, Biquad::lowpass(400.0, 0.8), |t| hit(t, 0.002, 0.04));
-    let mut voice = Osc::new();
+    let mut voice = Osc::default();
     let mut vowel = Biquad::bandpass(650.0, 2.0);
     let grunt: Vec<f32> = (0..blank(0.35).len())
         .map(|i| {
@@ -283,7 +283,7 @@ fn breath(n: &mut Noise, variant: u8) -> Vec<f32> {
     let mut s = shaped(n, length, Biquad::bandpass(450.0 + 80.0 * v, 1.6), |t| swell(t, 0.25, 0.15, 0.5));
     let exhale = shaped(n, length, Biquad::bandpass(320.0, 1.2), |t| swell(t - 0.55, 0.08, 0.5, 0.7 + 0.2 * v));
     mix_in(&mut s, &exhale, 0.0, 1.3);
-    let mut voice = Osc::new();
+    let mut voice = Osc::default();
     let rasp: Vec<f32> =
         (0..s.len()).map(|i| voice.buzz(62.0 + 6.0 * v) * swell(time(i) - 0.6, 0.1, 0.4, 0.6) * 0.08).collect();
     mix_in(&mut s, &rasp, 0.0, 1.0);
@@ -293,8 +293,8 @@ fn breath(n: &mut Noise, variant: u8) -> Vec<f32> {
 /// The crawler has seen you: a rasping shriek rising, with a tremble.
 fn shriek(n: &mut Noise) -> Vec<f32> {
     let length = 0.8;
-    let mut voice = Osc::new();
-    let mut wobble = Osc::new();
+    let mut voice = Osc::default();
+    let mut wobble = Osc::default();
     let mut band = Biquad::bandpass(1100.0, 1.5);
     let mut s: Vec<f32> = (0..blank(length).len())
         .map(|i| {
@@ -312,8 +312,8 @@ fn shriek(n: &mut Noise) -> Vec<f32> {
 fn snarl(n: &mut Noise) -> Vec<f32> {
     let length = 0.55;
     let mut s = shaped(n, length, Biquad::bandpass(2200.0, 0.9), |t| swell(t, 0.08, 0.2, length));
-    let mut voice = Osc::new();
-    let mut flutter = Osc::new();
+    let mut voice = Osc::default();
+    let mut flutter = Osc::default();
     let mut vowel = Biquad::bandpass(500.0, 1.5);
     let growl: Vec<f32> = (0..s.len())
         .map(|i| {
@@ -329,7 +329,7 @@ fn snarl(n: &mut Noise) -> Vec<f32> {
 /// Hit: a short squeal falling.
 fn squeal(n: &mut Noise) -> Vec<f32> {
     let length = 0.3;
-    let mut voice = Osc::new();
+    let mut voice = Osc::default();
     let mut vowel = Biquad::bandpass(900.0, 1.4);
     let mut s: Vec<f32> = (0..blank(length).len())
         .map(|i| {
@@ -345,7 +345,7 @@ fn squeal(n: &mut Noise) -> Vec<f32> {
 /// A long groan sinking away, and the body falling at its end.
 fn death_groan(n: &mut Noise) -> Vec<f32> {
     let length = 1.5;
-    let mut voice = Osc::new();
+    let mut voice = Osc::default();
     let mut vowel = Biquad::bandpass(450.0, 1.5);
     let mut s: Vec<f32> = (0..blank(length).len())
         .map(|i| {
@@ -362,8 +362,8 @@ fn death_groan(n: &mut Noise) -> Vec<f32> {
 fn door(n: &mut Noise) -> Vec<f32> {
     let length = 1.3;
     let mut s = clicks(n, &[0.0, 0.06], 900.0, length);
-    let mut hinge = Osc::new();
-    let mut wander = Osc::new();
+    let mut hinge = Osc::default();
+    let mut wander = Osc::default();
     let mut band = Biquad::bandpass(1300.0, 3.0);
     let creak: Vec<f32> = (0..s.len())
         .map(|i| {
@@ -390,8 +390,8 @@ fn death_sting(n: &mut Noise) -> Vec<f32> {
     let length = 2.6;
     let mut s = blank(length);
     for hz in [110.0, 130.8, 164.8] {
-        let mut tremble = Osc::new();
-        let mut osc = Osc::new();
+        let mut tremble = Osc::default();
+        let mut osc = Osc::default();
         for (i, v) in s.iter_mut().enumerate() {
             let t = time(i);
             *v += osc.buzz(hz * (1.0 - 0.12 * t / length))

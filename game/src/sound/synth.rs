@@ -24,7 +24,7 @@ impl Noise {
         Self(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1)
     }
 
-    pub fn next(&mut self) -> f32 {
+    pub fn sample(&mut self) -> f32 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
         self.0 ^= self.0 >> 27;
@@ -34,20 +34,17 @@ impl Noise {
 
     /// Uniform in `lo..hi`.
     pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * (self.next() * 0.5 + 0.5)
+        lo + (hi - lo) * (self.sample() * 0.5 + 0.5)
     }
 }
 
 /// A sine whose frequency may change every sample (a glide) without clicks: the phase is summed.
+#[derive(Default)]
 pub struct Osc {
     phase: f32,
 }
 
 impl Osc {
-    pub fn new() -> Self {
-        Self { phase: 0.0 }
-    }
-
     pub fn sine(&mut self, hz: f32) -> f32 {
         let v = (self.phase * TAU).sin();
         self.phase = (self.phase + hz / RATE as f32).fract();
@@ -163,9 +160,9 @@ mod tests {
 
     #[test]
     fn noise_is_seeded_and_spans_minus_one_to_one() {
-        let a: Vec<f32> = (0..1000).scan(Noise::new(3), |n, _| Some(n.next())).collect();
-        let b: Vec<f32> = (0..1000).scan(Noise::new(3), |n, _| Some(n.next())).collect();
-        let c: Vec<f32> = (0..1000).scan(Noise::new(4), |n, _| Some(n.next())).collect();
+        let a: Vec<f32> = (0..1000).scan(Noise::new(3), |n, _| Some(n.sample())).collect();
+        let b: Vec<f32> = (0..1000).scan(Noise::new(3), |n, _| Some(n.sample())).collect();
+        let c: Vec<f32> = (0..1000).scan(Noise::new(4), |n, _| Some(n.sample())).collect();
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert!(a.iter().all(|v| (-1.0..1.0).contains(v)));
@@ -177,7 +174,7 @@ mod tests {
     fn a_lowpass_keeps_low_tones_and_removes_high_ones() {
         let level = |hz: f32| {
             let mut f = Biquad::lowpass(500.0, 0.707);
-            let mut osc = Osc::new();
+            let mut osc = Osc::default();
             let out: Vec<f32> = (0..RATE as usize / 4).map(|_| f.run(osc.sine(hz))).collect();
             out[out.len() / 2..].iter().fold(0.0f32, |m, v| m.max(v.abs()))
         };
@@ -189,7 +186,7 @@ mod tests {
     fn a_loop_joins_without_a_jump() {
         let mut n = Noise::new(1);
         let mut f = Biquad::lowpass(200.0, 0.7);
-        let s: Vec<f32> = (0..RATE as usize).map(|_| f.run(n.next())).collect();
+        let s: Vec<f32> = (0..RATE as usize).map(|_| f.run(n.sample())).collect();
         let looped = make_loop(s, 0.25);
         let jump = (looped[0] - looped[looped.len() - 1]).abs();
         let typical = looped.windows(2).map(|w| (w[1] - w[0]).abs()).fold(0.0f32, f32::max);
