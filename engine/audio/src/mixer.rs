@@ -69,6 +69,21 @@ pub(crate) trait Mixing {
     fn voices_playing(&self) -> usize;
 }
 
+/// Why a mix could not be built: the backend's error (no device), or kira out of tracks.
+pub(crate) enum OpenError<E> {
+    Backend(E),
+    Tracks(kira::ResourceLimitReached),
+}
+
+impl<E: std::fmt::Display> std::fmt::Display for OpenError<E> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            OpenError::Backend(e) => e.fmt(f),
+            OpenError::Tracks(e) => e.fmt(f),
+        }
+    }
+}
+
 pub(crate) struct Mixer<B: Backend> {
     manager: AudioManager<B>,
     effects: TrackHandle,
@@ -80,19 +95,16 @@ pub(crate) struct Mixer<B: Backend> {
 }
 
 impl<B: Backend> Mixer<B> {
-    /// Opens the backend and builds the buses; the backend's error as text when it fails.
-    pub fn new(backend: B::Settings, volumes: Volumes) -> Result<Self, String>
-    where
-        B::Error: std::fmt::Debug,
-    {
+    /// Opens the backend and builds the buses.
+    pub fn new(backend: B::Settings, volumes: Volumes) -> Result<Self, OpenError<B::Error>> {
         let settings = AudioManagerSettings::<B> {
             capacities: Default::default(),
             main_track_builder: Default::default(),
             internal_buffer_size: 128,
             backend_settings: backend,
         };
-        let mut manager = AudioManager::<B>::new(settings).map_err(|e| format!("{e:?}"))?;
-        let limit = |e: kira::ResourceLimitReached| e.to_string();
+        let mut manager = AudioManager::<B>::new(settings).map_err(OpenError::Backend)?;
+        let limit = OpenError::Tracks;
         let mut effects = manager.add_sub_track(TrackBuilder::new().sub_track_capacity(VOICES)).map_err(limit)?;
         let ambience = manager.add_sub_track(TrackBuilder::new()).map_err(limit)?;
         let mut voices = Vec::with_capacity(VOICES);
@@ -203,7 +215,7 @@ mod tests {
     #[test]
     fn placed_sounds_share_a_pool_of_voices_and_follow_their_source() {
         let settings = MockBackendSettings { sample_rate: 48_000 };
-        let mut mixer = Mixer::<MockBackend>::new(settings, Volumes::default()).unwrap();
+        let Ok(mut mixer) = Mixer::<MockBackend>::new(settings, Volumes::default()) else { panic!("a mock mix") };
         let s = beep();
         mixer.loop_ambience(Some(&s), 0.5);
         for i in 0..VOICES as u32 + 5 {

@@ -24,7 +24,7 @@ impl AudioOutput {
     /// fails as a machine without a sound card does).
     pub fn open_with<B: Backend + 'static>(settings: B::Settings, volumes: Volumes) -> Self
     where
-        B::Error: std::fmt::Debug,
+        B::Error: std::fmt::Display,
     {
         match Mixer::<B>::new(settings, volumes) {
             Ok(mixer) => {
@@ -44,8 +44,8 @@ impl AudioOutput {
         let settings = kira::backend::mock::MockBackendSettings { sample_rate: 48_000 };
         match Mixer::<kira::backend::mock::MockBackend>::new(settings, Volumes::default()) {
             Ok(mixer) => Self { mix: Some(Box::new(mixer)) },
-            Err(e) => {
-                log::warn!("sound: the offline mix could not be built ({e})");
+            Err(_) => {
+                log::warn!("sound: the offline mix could not be built");
                 Self::silent()
             }
         }

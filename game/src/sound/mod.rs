@@ -18,6 +18,9 @@ use bank::SoundId;
 const SEED: u64 = 0x5eed_500d;
 /// The room tone's level under everything else.
 const ROOM_TONE_GAIN: f32 = 0.5;
+/// Every effect's level: sounds made to full scale overlap (a shot, its ricochet, a crawler's
+/// cry), so the mix keeps 6 dB in hand and a fight does not clip.
+const HEADROOM: f32 = 0.5;
 
 /// The sliders as the output takes them.
 pub fn volumes(config: &game_ui::Config) -> audio::Volumes {
@@ -95,8 +98,8 @@ impl Soundscape {
         for cue in cues::cues(events, state, &world.collision, self.ear) {
             let Some(sound) = bank.get(cue.sound) else { continue };
             match cue.at {
-                None => self.output.play(sound, cue.gain),
-                Some(emitter) => self.output.play_at(sound, cue.gain, emitter),
+                None => self.output.play(sound, cue.gain * HEADROOM),
+                Some(emitter) => self.output.play_at(sound, cue.gain * HEADROOM, emitter),
             }
         }
     }
