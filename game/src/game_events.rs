@@ -34,14 +34,14 @@ impl Messages {
     /// matters is written too (a crawler noticing you: where, and whether you can see it).
     pub fn push_events(&mut self, events: &[Event], state: &WorldState, captions: bool) {
         for e in events {
-            if *e == (Event::Hit { enemy: true }) {
+            if matches!(e, Event::Hit { enemy: Some(_), .. }) {
                 self.hit = HIT_FOR;
             }
             let text = match e {
                 Event::Picked(PickupKind::Battery) => format!("Battery — lamp at {:.0}%", state.lamp.battery * 100.0),
                 Event::Picked(PickupKind::Ammo) => format!("Ammo — {} in reserve", state.weapon.reserve),
                 Event::Picked(PickupKind::Health) => format!("Health — {:.0}", state.player.health),
-                Event::EnemyDown => match state.enemies_left() {
+                Event::EnemyDown { .. } => match state.enemies_left() {
                     0 => "The last crawler is down".to_owned(),
                     1 => "Crawler down — 1 left".to_owned(),
                     n => format!("Crawler down — {n} left"),
@@ -88,9 +88,13 @@ mod tests {
         let level = engine::scene::load_level(&crate::default_level()).unwrap();
         let sim = crate::sim::Simulation::new(&level, crate::sim::level_world(&level).unwrap(), 60, 1);
         let mut m = Messages::default();
-        m.push_events(&[Event::Fired, Event::Hit { enemy: false }], &sim.state, true);
+        m.push_events(&[Event::Fired, Event::Hit { enemy: None, at: glam::Vec3::ZERO }], &sim.state, true);
         assert_eq!((m.current(), m.hit()), (None, 0.0), "a miss says nothing");
-        m.push_events(&[Event::Hit { enemy: true }, Event::EnemyDown], &sim.state, true);
+        m.push_events(
+            &[Event::Hit { enemy: Some(0), at: glam::Vec3::ZERO }, Event::EnemyDown { enemy: 0 }],
+            &sim.state,
+            true,
+        );
         assert_eq!(m.hit(), 1.0);
         assert_eq!(m.current(), Some("Crawler down — 4 left"), "the state still counts 4 alive");
         m.tick(0.1);

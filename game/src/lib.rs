@@ -19,6 +19,7 @@ pub mod replay_goldens;
 pub mod script;
 pub mod script_trace;
 pub mod sim;
+pub mod sound;
 pub mod thumbnail;
 pub mod view;
 

@@ -24,6 +24,7 @@ use crate::level_list::ListedLevel;
 use crate::level_watch::FileWatch;
 use crate::recording::{Divergence, LoadedReplay, Recorder};
 use crate::sim::{lamp, player, weapon, Outcome, Simulation, WorldState};
+use crate::sound::Soundscape;
 use crate::view::WorldView;
 
 /// A recording is also written every this many ticks (10 s), so a crash or a killed process
@@ -90,6 +91,7 @@ pub fn run(level_path: &Path, levels_dirs: &[PathBuf]) -> anyhow::Result<()> {
         app.menus.calibrate();
     }
     app.watch_level(level_path);
+    app.open_sound();
     // Loading and checking every level takes a moment: the menu says so meanwhile.
     let dirs = crate::level_list::level_dirs(levels_dirs);
     let (found, listed) = std::sync::mpsc::channel();
@@ -156,6 +158,8 @@ pub struct GameWindow {
     /// Seconds since the level was won or lost.
     since_outcome: f32,
     messages: Messages,
+    /// What the player hears: silent until [`GameWindow::open_sound`] (tests never open it).
+    sound: Soundscape,
     frame_rate: FrameRate,
     /// The render scale that holds the target frame rate (`video.dynamic_resolution`).
     resolution: Option<DynamicResolution>,
@@ -209,6 +213,7 @@ impl GameWindow {
             time: 0.0,
             since_outcome: 0.0,
             messages: Messages::default(),
+            sound: Soundscape::silent(),
             frame_rate: FrameRate::new(),
             resolution: None,
             ticks_this_frame: 0,
@@ -226,6 +231,12 @@ impl GameWindow {
             levels: Vec::new(),
             listing: None,
         }
+    }
+
+    /// Plays sound on the default output device (or, without one, stays silent after one log
+    /// line).
+    pub fn open_sound(&mut self) {
+        self.sound = Soundscape::open(&self.config);
     }
 
     /// Hands the level menu what the scan found, once it is done.
@@ -280,6 +291,7 @@ impl GameWindow {
                 }
             }
             self.messages.push_events(&self.sim.events, &self.sim.state, self.config.captions);
+            self.sound.hear(&self.sim.events, &self.sim.state, &self.sim.world());
             self.ticks_this_frame += 1;
             self.prev = before;
         }
@@ -316,6 +328,7 @@ impl GameWindow {
         }
         self.view.view.camera.projection = CameraProjection::Perspective { fov_y: self.config.fov_deg.to_radians() };
         self.view.comfort = crate::view::Comfort::of(&self.config);
+        self.sound.set_volumes(&self.config);
         // Dynamic resolution keeps its scale while its target and ceiling stay (a GI setting
         // changed); a new target or ceiling starts it again from the ceiling.
         let fresh = DynamicResolution::new(self.config.target_fps, self.config.render_scale);
@@ -605,6 +618,8 @@ impl WindowApp for GameWindow {
         };
         let (prev, cur, t) = (&self.prev, &self.sim.state, self.clock.alpha());
         self.view.update(self.sim.entities(), prev, cur, t, pending, self.time);
+        let camera = &self.view.view.camera;
+        self.sound.listen(camera.position, camera.forward(), &self.sim.state, &self.sim.world());
         if self.sim.state.outcome != Outcome::Playing && matches!(self.source, TickSource::Live { .. }) {
             self.since_outcome += dt;
             if self.since_outcome >= GAME_OVER_DELAY {

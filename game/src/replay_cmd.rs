@@ -34,6 +34,7 @@ pub fn record(args: &RecordArgs) -> anyhow::Result<()> {
     let config = game_ui::Config { gi, ..crate::play::user_config().0 };
     let mut app = GameWindow::new(level, sim, TickSource::live(&config, Some(recorder)), config);
     app.watch_level(&level_path);
+    app.open_sound();
     let played = engine::window::run("Headlamp — recording", &mut app);
     if let TickSource::Live { recorder: Some(r), .. } = &app.source {
         r.save()?;
@@ -66,6 +67,7 @@ pub fn replay(args: &ReplayArgs) -> anyhow::Result<()> {
     let source = TickSource::Replay { replay: Box::new(loaded), next: 0, diverged: None };
     let config = game_ui::Config { gi, ..crate::play::user_config().0 };
     let mut app = GameWindow::new(level, sim, source, config);
+    app.open_sound();
     engine::window::run("Headlamp — replay", &mut app)
 }
 

@@ -41,6 +41,9 @@ const ARRIVED: f32 = 0.5;
 /// Ground covered by one full cycle of a crawler's legs, m: [`Enemy::walked`] is kept modulo
 /// this, so the walk cycle it drives stays exact however long the game.
 pub const GAIT: f32 = 1.2;
+/// Ticks between a crawler's breaths: slow while it wanders, quick while it hunts.
+pub const BREATH_CALM: u32 = 150;
+pub const BREATH_HUNTING: u32 = 70;
 
 /// A crawler's body.
 pub fn body_config() -> CharacterConfig {
@@ -141,6 +144,17 @@ impl Enemy {
 
     pub fn alive(&self) -> bool {
         self.mind != Mind::Dead
+    }
+
+    /// Whether crawler `index` (its place in the level's list) draws a breath on `tick`: each
+    /// its own beat, offset by its index so a pack does not breathe in unison.
+    pub fn breathes(&self, tick: u32, index: usize) -> bool {
+        let period = match self.mind {
+            Mind::Dead => return false,
+            Mind::Patrol | Mind::Search => BREATH_CALM,
+            Mind::Alert | Mind::Chase | Mind::Attack => BREATH_HUNTING,
+        };
+        (tick + index as u32 * 37).is_multiple_of(period)
     }
 
     /// Eye height of a crawler, m above its feet.

@@ -39,6 +39,7 @@ pub fn world(s: &WorldState) -> u64 {
     h.f32(p.eye_height);
     h.f32(p.health);
     h.bytes(&[p.hurt_ticks]);
+    h.f32(p.to_next_step);
 
     let l = &s.lamp;
     h.flags(&[l.on, l.attached]);

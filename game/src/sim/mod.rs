@@ -78,24 +78,68 @@ impl WorldState {
 }
 
 /// Something that happened in a tick, for the HUD and sound to react to. Not part of the
-/// state: the state alone decides what happens next.
+/// state: the state alone decides what happens next. Everything that makes a sound is here,
+/// so the same replay gives the same list, tick by tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Event {
     Fired,
-    /// A shot hit the level (false) or an enemy (true).
+    /// The trigger fell on an empty gun with nothing left to load.
+    DryFire,
+    ReloadStarted,
+    Reloaded,
+    /// A shot hit the level (`enemy` None) or crawler `enemy` (its index), at `at`.
     Hit {
-        enemy: bool,
+        enemy: Option<u16>,
+        at: Vec3,
     },
-    EnemyDown,
+    /// Crawler `enemy` died.
+    EnemyDown {
+        enemy: u16,
+    },
     Picked(PickupKind),
     PlayerHurt,
+    /// The player's feet: a step in this gait, leaving the ground, or landing at `speed` m/s.
+    Footstep(player::Gait),
+    Jumped,
+    Landed {
+        speed: f32,
+    },
     LampPickedUp,
+    /// The lamp left the head: set down (false) or thrown (true).
+    LampLetGo {
+        thrown: bool,
+    },
+    /// The lamp came to rest at `at` after falling or flying at `speed` m/s.
+    LampLanded {
+        at: Vec3,
+        speed: f32,
+    },
+    /// The lamp went on or off (pressed, or the battery ran out or was refilled).
+    LampSwitched {
+        on: bool,
+    },
+    /// Once a second while the lit lamp's battery is low.
+    LowBattery,
     /// Crawler `enemy` (its index) has noticed the player (seen, heard, or lit by the beam);
     /// `in_sight`: a clear line from the player's eyes to it.
     Noticed {
         enemy: u16,
         in_sight: bool,
     },
+    /// Crawler `enemy` drew a breath (alive, now and then: see [`Enemy::breathes`]).
+    Breath {
+        enemy: u16,
+    },
+    /// Crawler `enemy` rears up to strike.
+    Strike {
+        enemy: u16,
+    },
+    /// The level is won, by reaching the exit (`exit`) or putting every crawler down.
+    Won {
+        exit: bool,
+    },
+    /// The player died.
+    Died,
 }
 
 /// A level's fixed gameplay data: its collision geometry and what it places.
@@ -224,17 +268,47 @@ impl Simulation {
         let level = &self.world.collision;
         let s = &mut self.state;
         let mv = s.player.steer(cmd);
+        let body_before = s.player.body;
         self.controller.step(level, &mut s.player.body, &mv, dt);
         s.player.settle_eye(&self.controller.config, dt);
         s.player.hurt_ticks = s.player.hurt_ticks.saturating_sub(1);
-
-        let was_attached = s.lamp.attached;
-        s.lamp.step(cmd, &s.player, level, &mut s.rng, self.world.entities.rules.battery_seconds, dt);
-        if s.lamp.attached && !was_attached {
-            self.events.push(Event::LampPickedUp);
+        match s.player.footfall(&body_before, dt) {
+            Some(player::Footfall::Step(gait)) => self.events.push(Event::Footstep(gait)),
+            Some(player::Footfall::Jumped) => self.events.push(Event::Jumped),
+            Some(player::Footfall::Landed(speed)) => self.events.push(Event::Landed { speed }),
+            None => {}
         }
 
-        let gunshot = s.weapon.step(cmd);
+        let lamp_before = s.lamp;
+        s.lamp.step(cmd, &s.player, level, &mut s.rng, self.world.entities.rules.battery_seconds, dt);
+        if s.lamp.attached && !lamp_before.attached {
+            self.events.push(Event::LampPickedUp);
+        } else if !s.lamp.attached && lamp_before.attached {
+            self.events.push(Event::LampLetGo { thrown: !cmd.held(command::buttons::LAMP_DETACH) });
+        }
+        if !s.lamp.attached && s.lamp.resting && !lamp_before.resting {
+            self.events.push(Event::LampLanded { at: s.lamp.position, speed: lamp_before.velocity.length() });
+        }
+        if s.lamp.on && s.lamp.battery < lamp::LOW_BATTERY && s.tick.is_multiple_of(self.tick_rate) {
+            self.events.push(Event::LowBattery);
+        }
+
+        let gunshot = match s.weapon.step(cmd) {
+            weapon::Action::Shot => true,
+            weapon::Action::DryClick => {
+                self.events.push(Event::DryFire);
+                false
+            }
+            weapon::Action::ReloadStarted => {
+                self.events.push(Event::ReloadStarted);
+                false
+            }
+            weapon::Action::Reloaded => {
+                self.events.push(Event::Reloaded);
+                false
+            }
+            weapon::Action::Nothing => false,
+        };
         if gunshot {
             self.events.push(Event::Fired);
             self.shoot();
@@ -243,6 +317,10 @@ impl Simulation {
         self.collect_pickups();
 
         let s = &mut self.state;
+        // A battery picked up can light a dead lamp again: compared after the pickups.
+        if s.lamp.on != lamp_before.on {
+            self.events.push(Event::LampSwitched { on: s.lamp.on });
+        }
         let exit_reached = self.world.entities.exit.is_some_and(|exit| {
             let d = exit.position - s.player.body.position;
             d.x * d.x + d.z * d.z <= exit.radius * exit.radius && d.y.abs() < EXIT_HEIGHT
@@ -254,6 +332,11 @@ impl Simulation {
         } else {
             Outcome::Playing
         };
+        match s.outcome {
+            Outcome::Won => self.events.push(Event::Won { exit: exit_reached }),
+            Outcome::Lost => self.events.push(Event::Died),
+            Outcome::Playing => {}
+        }
     }
 
     /// A hitscan shot from the eye along the view: the nearest of the level and the enemies.
@@ -277,14 +360,15 @@ impl Simulation {
             (Some(i), _) => {
                 let e = &mut s.enemies[i];
                 e.shot(weapon::DAMAGE, s.player.body.position);
-                self.events.push(Event::Hit { enemy: true });
+                let (enemy, at) = (i as u16, eye + dir * nearest);
+                self.events.push(Event::Hit { enemy: Some(enemy), at });
                 if !e.alive() {
-                    self.events.push(Event::EnemyDown);
+                    self.events.push(Event::EnemyDown { enemy });
                 }
-                Impact { position: eye + dir * nearest, normal: -dir, tick: s.tick, on_enemy: true }
+                Impact { position: at, normal: -dir, tick: s.tick, on_enemy: true }
             }
             (None, Some(hit)) => {
-                self.events.push(Event::Hit { enemy: false });
+                self.events.push(Event::Hit { enemy: None, at: hit.point });
                 Impact { position: hit.point, normal: hit.normal, tick: s.tick, on_enemy: false }
             }
             (None, None) => return,
@@ -333,6 +417,7 @@ impl Simulation {
                     Vec3::ZERO
                 },
             };
+            let mind_before = e.mind;
             let calm = matches!(e.mind, enemy::Mind::Patrol | enemy::Mind::Search);
             if let enemy::Deed::Struck(damage) =
                 e.step(&senses, &spawn.route, level, &self.world.nav, &self.enemy_controller, dt)
@@ -340,9 +425,16 @@ impl Simulation {
                 s.player.hurt(damage);
                 self.events.push(Event::PlayerHurt);
             }
+            let index = i as u16;
             if calm && e.mind == enemy::Mind::Alert {
                 let in_sight = enemy::clear_line(level, s.player.eye(), e.eye());
-                self.events.push(Event::Noticed { enemy: i as u16, in_sight });
+                self.events.push(Event::Noticed { enemy: index, in_sight });
+            }
+            if e.mind == enemy::Mind::Attack && mind_before != enemy::Mind::Attack {
+                self.events.push(Event::Strike { enemy: index });
+            }
+            if e.breathes(s.tick, i) {
+                self.events.push(Event::Breath { enemy: index });
             }
         }
     }

@@ -20,6 +20,39 @@ pub const MAX_PITCH: i32 = 16_201;
 pub const MAX_HEALTH: f32 = 100.0;
 /// Ticks the HUD shows a hit for.
 pub const HURT_TICKS: u8 = 30;
+/// Walking from standing, the first footfall comes after this far, m.
+pub const FIRST_STEP: f32 = 0.5;
+/// A landing this fast (falling, m/s) is heard; slower ones (a step down) are not.
+pub const LANDING_HEARD: f32 = 2.0;
+
+/// How the player is moving on foot, for the sound of their steps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Gait {
+    Walk,
+    Sprint,
+    Crouch,
+}
+
+impl Gait {
+    /// Distance between footfalls, m: longer strides at a faster pace (walking 2.2 steps a
+    /// second, sprinting 2.8, crouching 1.8).
+    pub fn stride(self) -> f32 {
+        match self {
+            Gait::Walk => 1.8,
+            Gait::Sprint => 2.3,
+            Gait::Crouch => 1.1,
+        }
+    }
+}
+
+/// What the player's feet did in a tick.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Footfall {
+    Step(Gait),
+    Jumped,
+    /// Came down from a fall or a jump at this speed, m/s.
+    Landed(f32),
+}
 
 /// The unit direction of a heading and pitch in angle units.
 pub fn aim(yaw: u16, pitch: i16) -> Vec3 {
@@ -41,12 +74,22 @@ pub struct Player {
     pub health: f32,
     /// Ticks since the last hit still shown (counts down to 0).
     pub hurt_ticks: u8,
+    /// Metres left to walk until the next footfall.
+    pub to_next_step: f32,
 }
 
 impl Player {
     pub fn spawn(feet: Vec3, yaw: u16, pitch: i16, config: &CharacterConfig) -> Self {
         let body = CharacterBody::standing_at(feet);
-        Self { body, yaw, pitch, eye_height: body.height(config) - EYE_BELOW_TOP, health: MAX_HEALTH, hurt_ticks: 0 }
+        Self {
+            body,
+            yaw,
+            pitch,
+            eye_height: body.height(config) - EYE_BELOW_TOP,
+            health: MAX_HEALTH,
+            hurt_ticks: 0,
+            to_next_step: FIRST_STEP,
+        }
     }
 
     pub fn eye(&self) -> Vec3 {
@@ -91,6 +134,43 @@ impl Player {
             wish /= libm::sqrtf(len2);
         }
         CharacterMove { wish_velocity: wish * speed, jump: cmd.held(buttons::JUMP), crouch }
+    }
+
+    /// After the body moved from `before` this tick: a footfall when the ground walked since the
+    /// last one reaches a stride, a jump leaving the ground, or a landing.
+    pub fn footfall(&mut self, before: &CharacterBody, dt: f32) -> Option<Footfall> {
+        let now = &self.body;
+        if before.grounded && !now.grounded {
+            return (now.velocity.y > 0.0).then_some(Footfall::Jumped);
+        }
+        if !now.grounded {
+            return None;
+        }
+        if !before.grounded {
+            // The landing is the footfall; the next step comes a stride later.
+            self.to_next_step = Gait::Walk.stride();
+            let speed = -before.velocity.y;
+            return (speed >= LANDING_HEARD).then_some(Footfall::Landed(speed));
+        }
+        let (dx, dz) = (now.position.x - before.position.x, now.position.z - before.position.z);
+        let moved = libm::sqrtf(dx * dx + dz * dz);
+        if moved < 0.2 * dt {
+            self.to_next_step = FIRST_STEP;
+            return None;
+        }
+        let gait = if now.crouching {
+            Gait::Crouch
+        } else if moved > 0.5 * (WALK_SPEED + SPRINT_SPEED) * dt {
+            Gait::Sprint
+        } else {
+            Gait::Walk
+        };
+        self.to_next_step -= moved;
+        if self.to_next_step > 0.0 {
+            return None;
+        }
+        self.to_next_step = (self.to_next_step + gait.stride()).max(0.0);
+        Some(Footfall::Step(gait))
     }
 
     /// Moves the eye toward the body's current height.

@@ -94,7 +94,7 @@ fn shots_hit_the_nearest_thing_and_three_put_a_crawler_down() {
     let mut s = sim(world(vec![crawler(0.0, -8.0, 0.0, vec![])], vec![], None, None));
     s.state.player.pitch = angle_units((-2.0f32).to_radians()).round() as i16;
     s.step(&press(buttons::FIRE));
-    assert!(s.events.contains(&Event::Hit { enemy: true }), "{:?}", s.events);
+    assert!(s.events.iter().any(|e| matches!(e, Event::Hit { enemy: Some(0), .. })), "{:?}", s.events);
     assert_eq!(s.state.enemies[0].health, enemy::MAX_HEALTH - weapon::DAMAGE);
     let impact = s.state.impacts[0];
     assert!(impact.on_enemy && (impact.position.z - (-8.0 + 0.35)).abs() < 0.1, "{impact:?}");
@@ -293,4 +293,63 @@ fn crawlers_do_not_melt_into_one() {
     let (a, b) = (s.state.enemies[0].body.position, s.state.enemies[1].body.position);
     assert!(a.distance(b) >= enemy::CROWD_RADIUS - 0.05, "{a} {b}");
     assert_eq!(enemy::crowd_push(Vec3::ZERO, [Vec3::new(1.0, 0.0, 0.0)].into_iter()), Vec3::ZERO, "far enough apart");
+}
+
+#[test]
+fn footsteps_come_with_the_ground_walked_at_each_gaits_pace() {
+    let w = world(vec![], vec![], None, None);
+    // Two seconds of holding forward with these buttons: the footsteps' gaits.
+    let steps = |buttons: u8| {
+        let mut s = sim(w.clone());
+        run(&mut s, 10, idle());
+        let mut gaits = Vec::new();
+        for _ in 0..120 {
+            s.step(&TickCommand { forward: 127, buttons, ..Default::default() });
+            gaits.extend(s.events.iter().filter_map(|e| match e {
+                Event::Footstep(g) => Some(*g),
+                _ => None,
+            }));
+        }
+        gaits
+    };
+    // 8 m walked: the first step after 0.5 m, then one every 1.8 m.
+    assert_eq!(steps(0), vec![player::Gait::Walk; 5]);
+    // 13 m sprinted, a step every 2.3 m; 4 m crouched, every 1.1 m.
+    assert_eq!(steps(buttons::SPRINT), vec![player::Gait::Sprint; 6]);
+    assert_eq!(steps(buttons::CROUCH), vec![player::Gait::Crouch; 4]);
+    let mut still = sim(w.clone());
+    run(&mut still, 120, idle());
+    assert!(still.events.is_empty());
+
+    // A jump: off the ground, then the landing; no footstep in the air.
+    let mut s = sim(w);
+    run(&mut s, 10, idle());
+    let mut heard = Vec::new();
+    s.step(&press(buttons::JUMP));
+    heard.extend(s.events.iter().copied());
+    for _ in 0..90 {
+        s.step(&idle());
+        heard.extend(s.events.iter().copied());
+    }
+    assert_eq!(heard.len(), 2, "{heard:?}");
+    assert_eq!(heard[0], Event::Jumped);
+    assert!(matches!(heard[1], Event::Landed { speed } if speed > 3.0), "{heard:?}");
+}
+
+#[test]
+fn a_low_battery_ticks_once_a_second_and_the_lamp_switch_is_heard() {
+    let mut s = sim(world(vec![], vec![], None, None));
+    s.state.lamp.battery = lamp::LOW_BATTERY * 0.5;
+    let mut ticks = 0;
+    for _ in 0..180 {
+        s.step(&idle());
+        ticks += s.events.iter().filter(|e| **e == Event::LowBattery).count();
+    }
+    assert_eq!(ticks, 3);
+    s.step(&press(buttons::LAMP_TOGGLE));
+    assert!(s.events.contains(&Event::LampSwitched { on: false }), "{:?}", s.events);
+    run(&mut s, 120, idle());
+    assert!(s.events.is_empty(), "an unlit lamp does not tick");
+    s.step(&press(buttons::LAMP_TOGGLE));
+    assert!(s.events.contains(&Event::LampSwitched { on: true }), "{:?}", s.events);
 }

@@ -17,6 +17,21 @@ pub const DAMAGE: f32 = 34.0;
 pub const RANGE: f32 = 80.0;
 /// Impact marks kept; the oldest goes first.
 pub const MAX_IMPACTS: usize = 24;
+/// Ticks between dry clicks while the trigger is held on an empty gun with nothing to load.
+pub const DRY_INTERVAL: u8 = 20;
+
+/// What the gun did in a tick, for the simulation to act on and the sound to play.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Action {
+    Nothing,
+    /// A round left the barrel.
+    Shot,
+    /// The trigger fell on an empty chamber with nothing left to load.
+    DryClick,
+    ReloadStarted,
+    /// The reload finished: the magazine is full (or holds what the reserve had).
+    Reloaded,
+}
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Weapon {
@@ -44,8 +59,8 @@ impl Weapon {
         Self { magazine: MAGAZINE, reserve: START_RESERVE, cooldown: 0, reloading: 0, flash: 0 }
     }
 
-    /// Advances timers and handles the trigger and reload; true when a shot leaves this tick.
-    pub fn step(&mut self, cmd: &TickCommand) -> bool {
+    /// Advances timers and handles the trigger and reload.
+    pub fn step(&mut self, cmd: &TickCommand) -> Action {
         self.cooldown = self.cooldown.saturating_sub(1);
         self.flash = self.flash.saturating_sub(1);
         if self.reloading > 0 {
@@ -54,21 +69,27 @@ impl Weapon {
                 let moved = (MAGAZINE - self.magazine).min(self.reserve);
                 self.magazine += moved;
                 self.reserve -= moved;
+                return Action::Reloaded;
             }
-            return false;
+            return Action::Nothing;
         }
         let wants_reload = cmd.held(buttons::RELOAD) || (cmd.held(buttons::FIRE) && self.magazine == 0);
         if wants_reload && self.magazine < MAGAZINE && self.reserve > 0 {
             self.reloading = RELOAD_TICKS;
-            return false;
+            return Action::ReloadStarted;
         }
-        if cmd.held(buttons::FIRE) && self.cooldown == 0 && self.magazine > 0 {
+        if cmd.held(buttons::FIRE) && self.cooldown == 0 {
+            if self.magazine == 0 {
+                // Nothing to fire or load: a click, repeated while the trigger is held.
+                self.cooldown = DRY_INTERVAL;
+                return Action::DryClick;
+            }
             self.magazine -= 1;
             self.cooldown = FIRE_INTERVAL;
             self.flash = FLASH_TICKS;
-            return true;
+            return Action::Shot;
         }
-        false
+        Action::Nothing
     }
 
     /// Adds rounds to the reserve; false when it is already full.
@@ -126,26 +147,35 @@ mod tests {
     fn holding_the_trigger_fires_at_its_rate_until_empty_then_reloads() {
         let mut w = Weapon::new();
         // 12 shots 9 ticks apart take 100 ticks; then the empty gun starts reloading.
-        assert_eq!((0..120).filter(|_| w.step(&fire())).count(), 12);
+        assert_eq!((0..120).filter(|_| w.step(&fire()) == Action::Shot).count(), 12);
         assert_eq!(w.magazine, 0);
         assert!(w.reloading > 0, "an empty magazine reloads when the trigger is pulled");
-        for _ in 0..RELOAD_TICKS {
-            w.step(&TickCommand::default());
-        }
+        let done: Vec<Action> = (0..RELOAD_TICKS).map(|_| w.step(&TickCommand::default())).collect();
         assert_eq!((w.magazine, w.reserve), (12, 12));
+        assert_eq!(done.iter().filter(|a| **a == Action::Reloaded).count(), 1, "the reload's end says so, once");
+    }
+
+    #[test]
+    fn an_empty_gun_with_no_reserve_clicks_at_its_own_rate() {
+        let mut w = Weapon { magazine: 0, reserve: 0, ..Weapon::new() };
+        let actions: Vec<Action> = (0..60).map(|_| w.step(&fire())).collect();
+        let clicks: Vec<usize> = (0..60).filter(|&i| actions[i] == Action::DryClick).collect();
+        assert_eq!(clicks, vec![0, DRY_INTERVAL as usize, 2 * DRY_INTERVAL as usize]);
+        assert!(actions.iter().all(|a| matches!(a, Action::DryClick | Action::Nothing)));
+        assert_eq!(w.flash, 0, "a click lights nothing");
     }
 
     #[test]
     fn reload_tops_up_from_the_reserve_and_no_shot_leaves_meanwhile() {
         let mut w = Weapon::new();
-        assert!(w.step(&fire()));
+        assert_eq!(w.step(&fire()), Action::Shot);
         assert_eq!(w.flash, FLASH_TICKS);
         let reload = TickCommand { buttons: buttons::RELOAD, ..Default::default() };
-        assert!(!w.step(&reload));
-        assert!((0..RELOAD_TICKS).all(|_| !w.step(&fire())), "no shot during a reload");
+        assert_eq!(w.step(&reload), Action::ReloadStarted);
+        assert!((0..RELOAD_TICKS).all(|_| w.step(&fire()) != Action::Shot), "no shot during a reload");
         assert_eq!((w.magazine, w.reserve), (12, 23));
         let mut full = Weapon::new();
-        full.step(&reload);
+        assert_eq!(full.step(&reload), Action::Nothing);
         assert_eq!(full.reloading, 0, "a full magazine does not reload");
         w.reserve = MAX_RESERVE - 5;
         assert!(w.add_ammo(24));

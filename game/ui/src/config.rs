@@ -54,6 +54,11 @@ pub struct Config {
     pub hud_scale: f32,
     /// Size of the crosshair, in [`Config::CROSSHAIR_SCALE_RANGE`].
     pub crosshair_scale: f32,
+    /// Volumes in percent ([`Config::VOLUME_RANGE`]): everything, then the effects (shots,
+    /// steps, crawlers, stings) and the ambience (the room's tone) under it.
+    pub master_volume: f32,
+    pub effects_volume: f32,
+    pub ambience_volume: f32,
 }
 
 impl Default for Config {
@@ -77,6 +82,9 @@ impl Default for Config {
             captions: true,
             hud_scale: 1.0,
             crosshair_scale: 1.0,
+            master_volume: 80.0,
+            effects_volume: 100.0,
+            ambience_volume: 100.0,
         }
     }
 }
@@ -91,6 +99,7 @@ impl Config {
     pub const BRIGHTNESS_RANGE: RangeInclusive<f32> = -2.0..=2.0;
     pub const HUD_SCALE_RANGE: RangeInclusive<f32> = 0.75..=2.0;
     pub const CROSSHAIR_SCALE_RANGE: RangeInclusive<f32> = 0.5..=3.0;
+    pub const VOLUME_RANGE: RangeInclusive<f32> = 0.0..=100.0;
     /// How much of a flash `reduce_flashing` leaves: the muzzle flash's light, and the depth of
     /// the low-battery flicker.
     pub const REDUCED_FLASH: f32 = 0.25;

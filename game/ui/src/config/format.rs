@@ -22,11 +22,12 @@ pub(super) struct ParseError {
     pub problem: String,
 }
 
-const SECTIONS: [&str; 7] = ["controls", "video", "comfort", "bindings", "gamepad", "gamepad_bindings", "gi"];
+const SECTIONS: [&str; 8] = ["controls", "video", "comfort", "audio", "bindings", "gamepad", "gamepad_bindings", "gi"];
 const COMFORT: [&str; 6] = ["brightness", "calibrated", "reduce_flashing", "captions", "hud_scale", "crosshair_scale"];
 const CONTROLS: [&str; 3] = ["sensitivity", "invert_y", "fov_deg"];
 const GAMEPAD: [&str; 2] = ["look_sensitivity", "dead_zone"];
 const VIDEO: [&str; 5] = ["render_scale", "dynamic_resolution", "target_fps", "vsync", "show_fps"];
+const AUDIO: [&str; 3] = ["master", "effects", "ambience"];
 
 pub(super) fn write(c: &Config) -> String {
     let range = |r: &RangeInclusive<f32>| format!("{:?} to {:?}", r.start(), r.end());
@@ -70,6 +71,12 @@ pub(super) fn write(c: &Config) -> String {
          # size of the crosshair ({cross})\n\
          crosshair_scale = {:?}\n\
          \n\
+         [audio]\n\
+         # volumes in percent ({volume}): everything, the effects (shots, steps, crawlers, stings), the room's tone\n\
+         master = {:?}\n\
+         effects = {:?}\n\
+         ambience = {:?}\n\
+         \n\
          [bindings]\n\
          # Up to {SLOTS} keys or buttons per action, e.g. KeyW, Digit1, F5, Space, Tab, ShiftLeft,\n\
          # ControlLeft, AltLeft, ArrowUp, Comma, Numpad0, MouseLeft, MouseRight, MouseMiddle.\n",
@@ -87,6 +94,9 @@ pub(super) fn write(c: &Config) -> String {
         c.captions,
         c.hud_scale,
         c.crosshair_scale,
+        c.master_volume,
+        c.effects_volume,
+        c.ambience_volume,
         base = Config::BASE_RADIANS_PER_PIXEL,
         sens = range(&Config::SENSITIVITY_RANGE),
         fov = range(&Config::FOV_RANGE),
@@ -95,6 +105,7 @@ pub(super) fn write(c: &Config) -> String {
         bright = range(&Config::BRIGHTNESS_RANGE),
         ui = range(&Config::HUD_SCALE_RANGE),
         cross = range(&Config::CROSSHAIR_SCALE_RANGE),
+        volume = range(&Config::VOLUME_RANGE),
     );
     for action in Action::ALL {
         let names: Vec<String> = c.bindings.bindings(action).map(|b| format!("\"{b}\"")).collect();
@@ -128,6 +139,8 @@ struct Sections {
     video: Entries,
     #[serde(default)]
     comfort: Entries,
+    #[serde(default)]
+    audio: Entries,
     #[serde(default)]
     bindings: Entries,
     #[serde(default)]
@@ -197,6 +210,16 @@ pub(super) fn parse(text: &str) -> Result<Config, ParseError> {
             _ => Err(unknown(&COMFORT)),
         };
         set.map_err(|problem| error(key, "comfort", problem))?;
+    }
+    for (key, value) in by_position(&sections.audio) {
+        let value = value.get_ref();
+        let set = match key.get_ref().as_str() {
+            "master" => number(value, &Config::VOLUME_RANGE).map(|v| c.master_volume = v),
+            "effects" => number(value, &Config::VOLUME_RANGE).map(|v| c.effects_volume = v),
+            "ambience" => number(value, &Config::VOLUME_RANGE).map(|v| c.ambience_volume = v),
+            _ => Err(unknown(&AUDIO)),
+        };
+        set.map_err(|problem| error(key, "audio", problem))?;
     }
     c.bindings = bindings(&sections.bindings, &error)?;
     for (key, value) in by_position(&sections.gamepad) {

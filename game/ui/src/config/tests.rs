@@ -63,6 +63,9 @@ fn changed() -> Config {
         captions: false,
         hud_scale: 1.25,
         crosshair_scale: 2.5,
+        master_volume: 55.5,
+        effects_volume: 0.0,
+        ambience_volume: 35.0,
     }
 }
 
@@ -76,6 +79,8 @@ fn every_setting_survives_save_and_load() {
     assert!(c.dynamic_resolution != d.dynamic_resolution && c.target_fps != d.target_fps);
     assert!(c.brightness != d.brightness && c.calibrated != d.calibrated && c.reduce_flashing != d.reduce_flashing);
     assert!(c.hud_scale != d.hud_scale && c.crosshair_scale != d.crosshair_scale && c.captions != d.captions);
+    assert!(c.master_volume != d.master_volume && c.effects_volume != d.effects_volume);
+    assert!(c.ambience_volume != d.ambience_volume);
     for action in [Action::Jump, Action::Fire, Action::MoveForward, Action::Crouch] {
         assert_ne!(c.bindings.get(action), d.bindings.get(action), "{action:?}");
     }
@@ -162,8 +167,8 @@ fn unknown_keys_are_named() {
     assert!(text.contains("config.toml: line 3: controls.sensitivty: unknown key"), "{text}");
     assert!(text.contains("sensitivity, invert_y, fov_deg"), "lists the known keys: {text}");
 
-    let e = parse_err("[controls]\nfov_deg = 70\n\n[audio]\nvolume = 1\n");
-    assert_eq!((e.line, e.key.as_deref()), (Some(4), Some("audio")), "{e}");
+    let e = parse_err("[controls]\nfov_deg = 70\n\n[sound]\nvolume = 1\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(4), Some("sound")), "{e}");
     let e = parse_err("[video]\nvsync = true\nhdr = true\n");
     assert_eq!((e.line, e.key.as_deref()), (Some(3), Some("video.hdr")), "{e}");
     let e = parse_err("[gi]\nlite_budget = 3\n");
@@ -326,4 +331,21 @@ fn gamepad_settings_are_written_read_and_checked() {
     assert!(e.problem.contains("MoveForward"), "lists the actions: {e}");
     let e = parse_err("[gamepad_bindings]\nFire = 7\n");
     assert!(e.problem.contains("found integer"), "{e}");
+}
+
+#[test]
+fn volumes_are_percentages_checked_and_placed() {
+    let c = Config::from_toml("[audio]\nmaster = 40\neffects = 12.5\n", Path::new("c.toml")).unwrap();
+    assert_eq!((c.master_volume, c.effects_volume), (40.0, 12.5));
+    assert_eq!(c.ambience_volume, Config::default().ambience_volume, "a missing key takes its default");
+    let e = parse_err("[audio]\nmaster = 50\n\nambience = 120\n");
+    assert_eq!((e.line, e.key.as_deref()), (Some(4), Some("audio.ambience")), "{e}");
+    assert!(e.problem.contains("out of range (0.0 to 100.0)"), "{e}");
+    let e = parse_err("[audio]\nmusic = 50\n");
+    assert_eq!(e.key.as_deref(), Some("audio.music"), "{e}");
+    assert!(e.problem.contains("master, effects, ambience"), "the known keys are listed: {e}");
+    let e = parse_err("[audio]\neffects = \"loud\"\n");
+    assert!(e.to_string().contains("audio.effects: expected a number, found string"), "{e}");
+    let text = Config::default().to_toml();
+    assert!(text.contains("[audio]\n") && text.contains("master = 80.0\n"), "{text}");
 }

@@ -1,4 +1,4 @@
-//! The Settings screen: tabs for controls, key bindings, the gamepad, video and global
+//! The Settings screen: tabs for controls, key bindings, the gamepad, video, audio and global
 //! illumination. It edits the [`Config`] in place; the menu reports any change to the game.
 //!
 //! Rebinding: clicking a binding cell makes it wait ("press a key…"); the next key or mouse
@@ -22,11 +22,12 @@ enum Tab {
     Bindings,
     Gamepad,
     Video,
+    Audio,
     Gi,
 }
 
 impl Tab {
-    const ALL: [Tab; 5] = [Tab::Controls, Tab::Bindings, Tab::Gamepad, Tab::Video, Tab::Gi];
+    const ALL: [Tab; 6] = [Tab::Controls, Tab::Bindings, Tab::Gamepad, Tab::Video, Tab::Audio, Tab::Gi];
 
     fn label(self) -> &'static str {
         match self {
@@ -34,6 +35,7 @@ impl Tab {
             Tab::Bindings => "Key bindings",
             Tab::Gamepad => "Gamepad",
             Tab::Video => "Video",
+            Tab::Audio => "Audio",
             Tab::Gi => "Global illumination",
         }
     }
@@ -129,6 +131,7 @@ impl SettingsScreen {
                         Tab::Bindings => self.bindings(ui, config),
                         Tab::Gamepad => self.gamepad(ui, config),
                         Tab::Video => video(ui, config),
+                        Tab::Audio => audio(ui, config),
                         Tab::Gi => {
                             gi_panel::sliders(ui, &mut config.gi);
                             ui.label(RichText::new("Changes show on the next frame.").weak());
@@ -316,6 +319,18 @@ fn video(ui: &mut egui::Ui, config: &mut Config) {
         .fixed_decimals(1)
         .text("Crosshair size");
     ui.add(crosshair);
+}
+
+fn audio(ui: &mut egui::Ui, config: &mut Config) {
+    fn volume<'a>(value: &'a mut f32, label: &str) -> egui::Slider<'a> {
+        egui::Slider::new(value, Config::VOLUME_RANGE).step_by(1.0).fixed_decimals(0).suffix(" %").text(label)
+    }
+    ui.add(volume(&mut config.master_volume, "Master volume")).on_hover_text("everything the game plays");
+    ui.add(volume(&mut config.effects_volume, "Effects"))
+        .on_hover_text("shots, steps, the lamp, pickups, the crawlers, the stings at the end");
+    ui.add(volume(&mut config.ambience_volume, "Ambience"))
+        .on_hover_text("the quiet of the room: air, a hum, dripping");
+    ui.label(RichText::new("Changes are heard at once. Without a sound device the game plays silently.").weak());
 }
 
 /// The first key or mouse button pressed this frame that can be bound. The game's `Input`

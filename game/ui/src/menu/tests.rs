@@ -360,6 +360,22 @@ fn video_and_gi_settings_change_the_config() {
 }
 
 #[test]
+fn audio_sliders_change_the_volumes() {
+    let mut h = Harness::new();
+    h.open_settings_tab("Audio");
+    assert!(h.shows("80") && h.shows("Master volume") && h.shows("Ambience"), "{:?}", h.shown);
+    let at = h.slider_point("Master volume", 0.0);
+    assert_eq!(h.click_at(at, egui::PointerButton::Primary), Some(MenuAction::ConfigChanged));
+    assert_eq!(h.config.master_volume, 0.0);
+    h.settle();
+    let at = h.slider_point("Ambience", 0.5);
+    assert_eq!(h.click_at(at, egui::PointerButton::Primary), Some(MenuAction::ConfigChanged));
+    assert!((h.config.ambience_volume - 50.0).abs() <= 2.0, "{}", h.config.ambience_volume);
+    assert_eq!(h.config.ambience_volume.fract(), 0.0, "whole percents");
+    assert_eq!(h.config.effects_volume, 100.0, "the others stay");
+}
+
+#[test]
 fn a_warning_shows_until_dismissed() {
     let mut h = Harness::new();
     h.menus.show_warning("config.toml: line 2: controls.fov_deg: 140 is out of range");
