@@ -142,9 +142,9 @@ fn a_view_model_receives_the_gi_coloured_by_the_walls_it_faces() {
     let top_face = view.camera.position + view.camera.rotation * Vec3::new(0.12, -0.09, -0.4);
     let ndc = view.camera.view_projection(SIZE.0 as f32 / SIZE.1 as f32).project_point3(top_face);
     let (x, y) = (((ndc.x * 0.5 + 0.5) * SIZE.0 as f32) as u32, ((0.5 - ndc.y * 0.5) * SIZE.1 as f32) as u32);
-    for c in 0..3 {
+    for (c, e) in e.iter().enumerate() {
         let (on, off) = (lit.get_pixel(x, y)[c], unlit.get_pixel(x, y)[c]);
-        let want = 0.8 / std::f32::consts::PI * e[c];
+        let want = 0.8 / std::f32::consts::PI * e;
         // The frame's radiance is half floats: each value is rounded to 2⁻¹¹ of its size.
         let rounding = (on.abs() + off.abs()) / 2048.0;
         println!("pixel ({x}, {y}) channel {c}: the GI adds {:.5}, ρ/π·E = {want:.5}", on - off);
