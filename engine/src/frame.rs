@@ -26,6 +26,27 @@ pub struct ViewState {
     /// while the lamp is detached the reflective shadow map is the lamp's view, which cannot
     /// hold the flash's light, so the flash then lights directly only.
     pub camera_flash: [f32; 3],
+    /// Meshes held in front of the camera (a weapon in hand), placed in the world like
+    /// `instances`. They are drawn after the frame's lighting and the plugins, over the scene
+    /// with a depth buffer of their own, so they never go into a wall; they are lit by the
+    /// headlamp (shadowed by `lamp.depth` while it is detached), the camera flash, the punctual
+    /// lights and the indirect irradiance a plugin writes into `view_model.irradiance` at
+    /// [`ViewState::view_model_probe`]. They are in neither the G-buffer nor the lamp's view:
+    /// they cast no shadows and reflect no light into the scene, so a gun at the eye cannot
+    /// flood the reflective shadow map that the GI reads.
+    pub view_models: Vec<Instance>,
+}
+
+impl ViewState {
+    /// Where the view models take their indirect light from: the mean of their origins; None
+    /// when there are none.
+    pub fn view_model_probe(&self) -> Option<glam::Vec3> {
+        if self.view_models.is_empty() {
+            return None;
+        }
+        let sum: glam::Vec3 = self.view_models.iter().map(|i| i.transform.w_axis.truncate()).sum();
+        Some(sum / self.view_models.len() as f32)
+    }
 }
 
 /// A mesh added with `Renderer::add_mesh`.

@@ -1,5 +1,6 @@
 //! Meshes added at run time and this frame's instances of them: a vertex and an index buffer
-//! per mesh, and one per-instance vertex buffer (transform and colours) rewritten every frame.
+//! per mesh, and per-instance vertex buffers (transform and colours) rewritten every frame, one
+//! for the scene's instances and one for the view models.
 
 use std::ops::Range;
 
@@ -42,6 +43,14 @@ struct Run {
 
 pub struct GpuInstances {
     meshes: Vec<GpuMesh>,
+    /// `ViewState::instances`: drawn into the G-buffer and the lamp's view.
+    scene: Batch,
+    /// `ViewState::view_models`: drawn by the view-model pass only.
+    view_models: Batch,
+}
+
+/// One frame's placements of the meshes: an instance buffer and its draws.
+struct Batch {
     buffer: wgpu::Buffer,
     /// Instances `buffer` holds.
     capacity: usize,
@@ -50,13 +59,7 @@ pub struct GpuInstances {
 
 impl GpuInstances {
     pub fn new(gpu: &Gpu) -> Self {
-        const CAPACITY: usize = 64;
-        Self {
-            meshes: Vec::new(),
-            buffer: instance_buffer(&gpu.device, CAPACITY),
-            capacity: CAPACITY,
-            runs: Vec::new(),
-        }
+        Self { meshes: Vec::new(), scene: Batch::new(&gpu.device, 64), view_models: Batch::new(&gpu.device, 16) }
     }
 
     /// Uploads a mesh (`scene::Vertex` layout, triangle list; an instance's colours come from
@@ -83,13 +86,43 @@ impl GpuInstances {
         id
     }
 
-    /// Writes this frame's instances, grouped by mesh (one draw per mesh), growing the buffer
-    /// when they no longer fit. Instances of unknown or empty meshes are dropped.
-    pub fn upload(&mut self, gpu: &Gpu, instances: &[Instance]) {
-        let mut drawn: Vec<&Instance> = instances
-            .iter()
-            .filter(|i| self.meshes.get(i.mesh.0 as usize).is_some_and(|m| m.index_count > 0))
-            .collect();
+    /// Writes this frame's instances and view models, grouped by mesh (one draw per mesh),
+    /// growing the buffers when they no longer fit. Instances of unknown or empty meshes are
+    /// dropped.
+    pub fn upload(&mut self, gpu: &Gpu, instances: &[Instance], view_models: &[Instance]) {
+        self.scene.upload(gpu, &self.meshes, instances);
+        self.view_models.upload(gpu, &self.meshes, view_models);
+    }
+
+    /// No instances to draw into the scene this frame.
+    pub fn is_empty(&self) -> bool {
+        self.scene.runs.is_empty()
+    }
+
+    /// No view models to draw this frame.
+    pub fn view_models_empty(&self) -> bool {
+        self.view_models.runs.is_empty()
+    }
+
+    /// Draws every instance; the caller has set an instance pipeline and group 0.
+    pub fn draw_all(&self, pass: &mut wgpu::RenderPass<'_>) {
+        self.scene.draw(pass, &self.meshes);
+    }
+
+    /// Draws every view model, as [`GpuInstances::draw_all`] does the instances.
+    pub fn draw_view_models(&self, pass: &mut wgpu::RenderPass<'_>) {
+        self.view_models.draw(pass, &self.meshes);
+    }
+}
+
+impl Batch {
+    fn new(device: &wgpu::Device, capacity: usize) -> Self {
+        Self { buffer: instance_buffer(device, capacity), capacity, runs: Vec::new() }
+    }
+
+    fn upload(&mut self, gpu: &Gpu, meshes: &[GpuMesh], instances: &[Instance]) {
+        let mut drawn: Vec<&Instance> =
+            instances.iter().filter(|i| meshes.get(i.mesh.0 as usize).is_some_and(|m| m.index_count > 0)).collect();
         // Stable: instances of one mesh keep the order they were given in.
         drawn.sort_by_key(|i| i.mesh.0);
         self.runs.clear();
@@ -118,16 +151,10 @@ impl GpuInstances {
         gpu.queue.write_buffer(&self.buffer, 0, bytemuck::cast_slice(&data));
     }
 
-    /// Nothing to draw this frame.
-    pub fn is_empty(&self) -> bool {
-        self.runs.is_empty()
-    }
-
-    /// Draws every instance; the caller has set an instance pipeline and group 0.
-    pub fn draw_all(&self, pass: &mut wgpu::RenderPass<'_>) {
+    fn draw(&self, pass: &mut wgpu::RenderPass<'_>, meshes: &[GpuMesh]) {
         pass.set_vertex_buffer(1, self.buffer.slice(..));
         for run in &self.runs {
-            let mesh = &self.meshes[run.mesh];
+            let mesh = &meshes[run.mesh];
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
             pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..mesh.index_count, 0, run.instances.clone());

@@ -14,6 +14,7 @@ use crate::gpu_scene::GpuScene;
 use crate::graph::{GraphError, ImportedTexture, RenderGraph, SizeRule};
 use crate::passes::{
     names, CompositePass, DirectLightPass, GBufferPass, LampViewPass, OutputView, PresentPass, PresentSettings,
+    ViewModelPass, ViewModelProbePass,
 };
 use crate::plugin::{Plugin, PluginContext, ViewEntry};
 
@@ -45,6 +46,8 @@ impl Renderer {
         graph.add_pass(Box::new(LampViewPass::new(gpu, &layouts, &gpu_scene)));
         graph.add_pass(Box::new(DirectLightPass::new(gpu, &layouts)));
         graph.add_pass(Box::new(CompositePass::new(gpu, &layouts)));
+        // Creates the view models' irradiance (zero) before any plugin writes into it.
+        graph.add_pass(Box::new(ViewModelProbePass));
         graph.add_pass(Box::new(PresentPass::new(gpu, &layouts, present.clone())));
 
         let view = |name: &str, source: &str, kind| ViewEntry { name: name.into(), source: source.into(), kind };
@@ -64,6 +67,8 @@ impl Renderer {
             plugin.build(&mut ctx);
             log::info!("plugin '{}' built", plugin.name());
         }
+        // Registered last of everything writing `hdr`, so it draws over what plugins add there.
+        graph.add_pass(Box::new(ViewModelPass::new(gpu, &layouts)));
         graph.compile()?;
         let instances = GpuInstances::new(gpu);
         Ok(Self { layouts, globals, scene: gpu_scene, instances, graph, present, views, plugins, render_scale: 1.0 })
@@ -135,7 +140,7 @@ impl Renderer {
         let aspect = output.0 as f32 / output.1.max(1) as f32;
         let lamp = view.headlamp.frustum(&view.camera, aspect);
         self.globals.update(gpu, &self.layouts, view, &lamp, size, aspect);
-        self.instances.upload(gpu, &view.instances);
+        self.instances.upload(gpu, &view.instances, &view.view_models);
         let frame = Frame {
             size,
             view,

@@ -76,6 +76,7 @@ pub fn initial_view(level: &Level, overrides: &ViewOverrides) -> ViewState {
         exposure,
         instances: vec![],
         camera_flash: [0.0; 3],
+        view_models: vec![],
     }
 }
 

@@ -46,7 +46,15 @@ fn lamp_off() -> Headlamp {
 }
 
 fn view(camera: Camera, headlamp: Headlamp) -> ViewState {
-    ViewState { camera, headlamp, lights: vec![], exposure: 1.0, instances: vec![], camera_flash: [0.0; 3] }
+    ViewState {
+        camera,
+        headlamp,
+        lights: vec![],
+        exposure: 1.0,
+        instances: vec![],
+        camera_flash: [0.0; 3],
+        view_models: vec![],
+    }
 }
 
 /// The camera of most tests: at the origin, looking down -Z.

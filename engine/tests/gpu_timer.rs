@@ -32,6 +32,7 @@ fn view() -> ViewState {
         exposure: 1.0,
         instances: vec![],
         camera_flash: [0.0; 3],
+        view_models: vec![],
     }
 }
 

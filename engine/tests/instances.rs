@@ -47,7 +47,15 @@ fn uniform_lamp() -> Headlamp {
 }
 
 fn view(camera: Camera, headlamp: Headlamp, instances: Vec<Instance>) -> ViewState {
-    ViewState { camera, headlamp, lights: vec![], exposure: 1.0, instances, camera_flash: [0.0; 3] }
+    ViewState {
+        camera,
+        headlamp,
+        lights: vec![],
+        exposure: 1.0,
+        instances,
+        camera_flash: [0.0; 3],
+        view_models: vec![],
+    }
 }
 
 /// A renderer of `scene` with a unit cube (half extent 0.5) added.

@@ -55,6 +55,7 @@ fn render_direct_with_flash(scene: &Scene, lamp: Headlamp, flash: [f32; 3]) -> i
         exposure: 1.0,
         instances: vec![],
         camera_flash: flash,
+        view_models: vec![],
     };
     let target = HeadlessTarget::new(&gpu, SIZE.0, SIZE.1, ImageKind::Linear);
     match target.render(&gpu, &mut renderer, &view).unwrap() {

@@ -58,6 +58,7 @@ fn scene_view(renderer: &mut Renderer, gpu: &Gpu) -> ViewState {
         exposure: 8.0,
         instances: vec![instance],
         camera_flash: [0.0; 3],
+        view_models: vec![],
     }
 }
 

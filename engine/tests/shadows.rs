@@ -79,7 +79,15 @@ fn detached(eye: Vec3, target: Vec3) -> Headlamp {
 }
 
 fn view(camera: Camera, headlamp: Headlamp) -> ViewState {
-    ViewState { camera, headlamp, lights: vec![], exposure: 1.0, instances: vec![], camera_flash: [0.0; 3] }
+    ViewState {
+        camera,
+        headlamp,
+        lights: vec![],
+        exposure: 1.0,
+        instances: vec![],
+        camera_flash: [0.0; 3],
+        view_models: vec![],
+    }
 }
 
 fn gpu() -> Gpu {

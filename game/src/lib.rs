@@ -9,6 +9,7 @@ pub mod command_sampler;
 pub mod crawler_body;
 pub mod game_events;
 pub mod golden;
+pub mod gun_model;
 pub mod level_list;
 pub mod level_watch;
 pub mod play;

@@ -413,27 +413,8 @@ impl GameWindow {
             hurt: s.player.hurt_ticks as f32 / player::HURT_TICKS as f32,
             hint,
             message: self.messages.current().map(str::to_owned),
-            gun: s.player.alive().then(|| self.gun_pose()),
             hit: self.messages.hit(),
             crosshair_scale: self.config.crosshair_scale,
-        }
-    }
-
-    /// The gun in hand, from the weapon's timers (blended with the frame's place between ticks
-    /// would be smoother still; at 60 ticks a second a step is not visible).
-    fn gun_pose(&self) -> game_ui::GunPose {
-        let w = &self.sim.state.weapon;
-        let reload = if w.reloading > 0 {
-            // Down and back up over the reload: a sine arch.
-            let done = 1.0 - w.reloading as f32 / weapon::RELOAD_TICKS as f32;
-            (done * std::f32::consts::PI).sin()
-        } else {
-            0.0
-        };
-        game_ui::GunPose {
-            recoil: w.cooldown as f32 / weapon::FIRE_INTERVAL as f32,
-            flash: w.flash as f32 / weapon::FLASH_TICKS as f32,
-            lowered: reload,
         }
     }
 

@@ -10,6 +10,7 @@ use engine::start_view::{initial_view, ViewOverrides};
 
 use crate::actors::ActorMeshes;
 use crate::crawler_body::LampLight;
+use crate::gun_model::{GunModel, GunPose};
 use crate::sim::command::radians;
 use crate::sim::{weapon, LevelEntities, WorldState};
 
@@ -29,6 +30,8 @@ pub struct WorldView {
     pub comfort: Comfort,
     /// Added once the renderer exists; without them only the camera and lights follow the state.
     meshes: Option<ActorMeshes>,
+    /// The gun in hand, added with the meshes.
+    gun: Option<GunModel>,
 }
 
 impl WorldView {
@@ -40,12 +43,14 @@ impl WorldView {
             comfort: Comfort::default(),
             view,
             meshes: None,
+            gun: None,
         }
     }
 
     /// Adds the actors' meshes to the renderer that will draw this view.
     pub fn add_meshes(&mut self, renderer: &mut Renderer, gpu: &Gpu) {
         self.meshes = Some(ActorMeshes::add_to(renderer, gpu));
+        self.gun = Some(GunModel::add_to(renderer, gpu));
     }
 
     /// The view between `prev` (t = 0) and `cur` (t = 1). `extra_turn` (angle units) is mouse
@@ -81,6 +86,13 @@ impl WorldView {
         view.instances = match &self.meshes {
             Some(m) => m.instances(entities, prev, cur, t, time, &LampLight::of(view)),
             None => Vec::new(),
+        };
+        view.view_models = match &self.gun {
+            Some(gun) if c.alive() => {
+                let pose = GunPose::lerp(GunPose::of(&prev.weapon), GunPose::of(&cur.weapon), t);
+                gun.instances(&view.camera, pose, self.comfort.flashing)
+            }
+            _ => Vec::new(),
         };
     }
 

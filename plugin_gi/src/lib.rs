@@ -60,7 +60,8 @@ impl Plugin for GiPlugin {
         let pyramid = Rc::new(RefCell::new(pyramid::FluxPyramid::new(device, globals, gpu.params.clone())));
         let handle = &self.handle;
         ctx.add_pass(passes::FluxPass::new(handle.clone(), gpu.clone(), pyramid.clone()));
-        ctx.add_pass(passes::GatherPass::new(device, globals, handle.clone(), gpu.clone(), pyramid));
+        ctx.add_pass(passes::GatherPass::new(device, globals, handle.clone(), gpu.clone(), pyramid.clone()));
+        ctx.add_pass(passes::ViewModelProbePass::new(device, globals, handle.clone(), pyramid));
         ctx.add_pass(passes::BouncePass::new(device, globals, handle.clone()));
         ctx.add_pass(passes::CompositePass::new(device, globals, handle.clone(), gpu.clone()));
         ctx.add_pass(passes::IndirectViewPass::new(device, globals, handle.clone(), gpu.clone()));

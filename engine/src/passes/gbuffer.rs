@@ -83,7 +83,7 @@ impl ScenePipelines {
     }
 }
 
-fn raster_pipeline(
+pub(super) fn raster_pipeline(
     device: &wgpu::Device,
     label: &str,
     module: &wgpu::ShaderModule,

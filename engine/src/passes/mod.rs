@@ -1,5 +1,5 @@
 //! The engine's core passes: G-buffer (+ lamp view when the headlamp is detached) → direct
-//! light → composite → [plugins] → present.
+//! light → composite → [plugins] → view models → present.
 
 mod composite;
 mod direct_light;
@@ -7,6 +7,7 @@ mod fullscreen;
 mod gbuffer;
 mod lamp_view;
 mod present;
+mod view_model;
 
 pub use composite::CompositePass;
 pub use direct_light::DirectLightPass;
@@ -14,6 +15,7 @@ pub use fullscreen::{bind_textures, color_pass, fullscreen_pipeline, procedural_
 pub use gbuffer::GBufferPass;
 pub use lamp_view::{LampViewPass, LAMP_MAP_SIZE};
 pub use present::{OutputView, PresentPass, PresentSettings};
+pub use view_model::{ViewModelPass, ViewModelProbePass, VIEW_MODEL_IRRADIANCE_SIZE};
 
 /// Names of the graph resources the core passes create; plugins read and write them by name.
 pub mod names {
@@ -43,6 +45,14 @@ pub mod names {
     pub const DIRECT: &str = "direct";
     /// The frame's linear radiance; plugins blend additively into it (Rgba16Float).
     pub const HDR: &str = "hdr";
+    /// Indirect irradiance E (W/m²) at `ViewState::view_model_probe`, an ambient cube: six
+    /// `vec4<f32>` (w unused) for a surface facing +X, −X, +Y, −Y, +Z, −Z (world axes). Created
+    /// zero each frame by the engine; a GI plugin that can tell the irradiance at a point
+    /// `write`s it (plugins are registered after its creator), and the view-model pass reads it.
+    /// The one place indirect light reaches the view models, which are in no G-buffer.
+    pub const VIEW_MODEL_IRRADIANCE: &str = "view_model.irradiance";
+    /// The view models' own reversed depth buffer (Depth32Float), cleared before they are drawn.
+    pub const VIEW_MODEL_DEPTH: &str = "view_model.depth";
     /// The imported output image (swapchain or readback target).
     pub const OUTPUT: &str = "output";
 }
@@ -56,4 +66,5 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("direct_light.wgsl", direct_light::SHADER),
     ("composite.wgsl", composite::SHADER),
     ("present.wgsl", present::SHADER),
+    ("view_model.wgsl", view_model::SHADER),
 ];

@@ -26,8 +26,6 @@ pub struct HudInfo {
     pub hint: Option<String>,
     /// Something that just happened, e.g. "Battery +50%".
     pub message: Option<String>,
-    /// The gun in hand; None draws no gun (e.g. watching from a menu).
-    pub gun: Option<crate::GunPose>,
     /// 0..=1: a shot just hit a crawler (a marker round the crosshair, fading).
     pub hit: f32,
     /// The crosshair's size (`Config::crosshair_scale`).
@@ -52,7 +50,6 @@ impl Default for HudInfo {
             hurt: 0.0,
             hint: None,
             message: None,
-            gun: Some(crate::GunPose::default()),
             hit: 0.0,
             crosshair_scale: 1.0,
         }
@@ -74,10 +71,6 @@ const LAMP: Color32 = Color32::from_rgb(250, 225, 140);
 pub fn show(ctx: &egui::Context, hud: &HudInfo) {
     let screen = ctx.content_rect();
     let painter = ctx.layer_painter(egui::LayerId::new(egui::Order::Background, egui::Id::unique("hud painter")));
-    if let Some(pose) = hud.gun {
-        // Under everything else the HUD draws (the hint line may pass over it).
-        ctx.layer_painter(egui::LayerId::background()).extend(crate::gun::shapes(screen, pose));
-    }
     hurt_flash(&painter, screen, hud.hurt);
     crosshair(&painter, screen.center(), hud.crosshair_scale);
     hit_marker(&painter, screen.center(), hud.hit);
@@ -276,7 +269,7 @@ mod tests {
     fn the_crosshair_grows_with_its_scale() {
         // How far the crosshair's lines reach from the screen's centre.
         let reach = |scale: f32| {
-            let (_, output) = shown(&HudInfo { crosshair_scale: scale, gun: None, ..HudInfo::default() });
+            let (_, output) = shown(&HudInfo { crosshair_scale: scale, ..HudInfo::default() });
             let centre = egui::pos2(SCREEN.x / 2.0, SCREEN.y / 2.0);
             output
                 .shapes

@@ -7,7 +7,6 @@ pub mod bindings;
 pub mod config;
 pub mod egui_harness;
 pub mod gi_panel;
-pub mod gun;
 pub mod hud;
 pub mod menu;
 pub mod overlay;
@@ -15,7 +14,6 @@ pub mod pad_bindings;
 
 pub use bindings::{Action, Binding, KeyBindings};
 pub use config::{config_path, Config, ConfigError};
-pub use gun::GunPose;
 pub use hud::HudInfo;
 pub use menu::{LevelCard, MenuAction, Menus, Screen, THUMBNAIL};
 pub use overlay::{FrameRate, OverlayInfo};

@@ -6,6 +6,7 @@ mod flux;
 mod gather;
 mod lights_view;
 mod reference;
+mod view_model;
 
 pub use bounces::BouncePass;
 pub use composite::{CompositePass, IndirectViewPass};
@@ -13,6 +14,7 @@ pub use flux::FluxPass;
 pub use gather::GatherPass;
 pub use lights_view::LightsViewPass;
 pub use reference::ReferencePass;
+pub use view_model::ViewModelProbePass;
 
 use engine::wgpu;
 
@@ -26,6 +28,7 @@ pub fn module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderM
 pub const PYRAMID_SHADER: &str = include_str!("../../../shaders/gi/pyramid.wgsl");
 pub const CUTS_SHADER: &str = include_str!("../../../shaders/gi/cuts.wgsl");
 pub const GATHER_SHADER: &str = include_str!("../../../shaders/gi/gather.wgsl");
+pub const VIEW_MODEL_PROBE_SHADER: &str = include_str!("../../../shaders/gi/view_model_probe.wgsl");
 
 /// Every WGSL file of the plugin, for validation tests.
 pub const SHADERS: &[(&str, &str)] = &[
@@ -35,4 +38,5 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("gi/composite.wgsl", composite::SHADER),
     ("gi/lights_view.wgsl", lights_view::SHADER),
     ("gi/reference.wgsl", reference::SHADER),
+    ("gi/view_model_probe.wgsl", VIEW_MODEL_PROBE_SHADER),
 ];

@@ -9,6 +9,7 @@ use engine::headlamp::Headlamp;
 use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::renderer::Renderer;
 use engine::scene::{HeadlampProfile, IntensityDistribution, Material, Mesh, Scene, Vertex};
+#[allow(unused_imports)] // Not every test file compares images.
 pub use plugin_gi::metrics::block_error;
 use plugin_gi::{GiHandle, GiPlugin, GiSettings};
 
@@ -70,6 +71,7 @@ pub fn cornell_view(power: f32) -> ViewState {
         exposure: 1.0,
         instances: vec![],
         camera_flash: [0.0; 3],
+        view_models: vec![],
     }
 }
 

@@ -1,0 +1,156 @@
+//! The view models (`ViewState::view_models`, a weapon in hand): drawn last onto the frame's
+//! radiance, after the plugins, with a depth buffer of their own cleared first, so they are
+//! never hidden by a wall the camera is pressed against. They are in no G-buffer and not in the
+//! lamp's view, so the GI never sees them as reflectors (a gun 0.4 m from the attached
+//! headlamp would otherwise be the brightest thing in its reflective shadow map).
+//!
+//! Their indirect light comes through one engine resource, `view_model.irradiance`: an ambient
+//! cube at `ViewState::view_model_probe`, which [`ViewModelProbePass`] creates zeroed and a GI
+//! plugin may `write` (its passes are registered after the probe's). The engine so knows no
+//! plugin, and without one the view models are lit directly only.
+
+use super::gbuffer::{raster_pipeline, DEPTH_FORMAT};
+use super::names::*;
+use super::HDR_FORMAT;
+use crate::globals::CoreLayouts;
+use crate::gpu::Gpu;
+use crate::gpu_instances::INSTANCE_LAYOUT;
+use crate::gpu_scene::VERTEX_LAYOUT;
+use crate::graph::{BufferDesc, PassContext, PassDecl, RenderPass, TextureDesc};
+
+pub const SHADER: &str = include_str!("../../../shaders/view_model.wgsl");
+
+/// Bytes of `view_model.irradiance`: six `vec4<f32>`.
+pub const VIEW_MODEL_IRRADIANCE_SIZE: u64 = 6 * 16;
+
+/// Creates `view_model.irradiance` and clears it to zero.
+pub struct ViewModelProbePass;
+
+impl RenderPass for ViewModelProbePass {
+    fn name(&self) -> &str {
+        "view_model_probe"
+    }
+
+    fn declare(&self, d: &mut PassDecl) {
+        let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC;
+        d.create_buffer(VIEW_MODEL_IRRADIANCE, BufferDesc { size: VIEW_MODEL_IRRADIANCE_SIZE, usage });
+    }
+
+    fn run(&mut self, ctx: &mut PassContext<'_>) {
+        ctx.encoder.clear_buffer(ctx.buffer(VIEW_MODEL_IRRADIANCE), 0, None);
+    }
+}
+
+pub struct ViewModelPass {
+    pipeline: wgpu::RenderPipeline,
+    inputs: wgpu::BindGroupLayout,
+    /// As the direct light pass's: bilinear GreaterEqual comparison of `lamp.depth`.
+    shadow_sampler: wgpu::Sampler,
+}
+
+impl ViewModelPass {
+    pub fn new(gpu: &Gpu, layouts: &CoreLayouts) -> Self {
+        let device = &gpu.device;
+        let module = crate::shader::module(device, "view model", SHADER, &[]);
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let inputs = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("view model inputs"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: fragment,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: fragment,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: fragment,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                    count: None,
+                },
+            ],
+        });
+        // Group 1 (scene_surface.wgsl's material) is not used by this pipeline.
+        let pipeline = raster_pipeline(
+            device,
+            "view model",
+            &module,
+            ("vs_main", "fs_main", None),
+            &[Some(&layouts.globals), None, Some(&inputs)],
+            &[Some(VERTEX_LAYOUT), Some(INSTANCE_LAYOUT)],
+            &[HDR_FORMAT],
+        );
+        let shadow_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("view model lamp shadow"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            compare: Some(wgpu::CompareFunction::GreaterEqual),
+            ..Default::default()
+        });
+        Self { pipeline, inputs, shadow_sampler }
+    }
+}
+
+impl RenderPass for ViewModelPass {
+    fn name(&self) -> &str {
+        "view_model"
+    }
+
+    fn declare(&self, d: &mut PassDecl) {
+        // The same declarations every frame, view models or none, so the graph never changes.
+        d.read(VIEW_MODEL_IRRADIANCE)
+            .read(LAMP_DEPTH)
+            .write(HDR)
+            .create_texture(VIEW_MODEL_DEPTH, TextureDesc::target(DEPTH_FORMAT));
+    }
+
+    fn run(&mut self, ctx: &mut PassContext<'_>) {
+        if ctx.frame.instances.view_models_empty() {
+            return;
+        }
+        let inputs = ctx.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("view model inputs"),
+            layout: &self.inputs,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: ctx.buffer(VIEW_MODEL_IRRADIANCE).as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(ctx.view(LAMP_DEPTH)) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&self.shadow_sampler) },
+            ],
+        });
+        let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("view model"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: ctx.view(HDR),
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: ctx.view(VIEW_MODEL_DEPTH),
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Discard }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, ctx.frame.globals, &[]);
+        pass.set_bind_group(2, &inputs, &[]);
+        ctx.frame.instances.draw_view_models(&mut pass);
+    }
+}
