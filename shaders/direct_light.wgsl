@@ -1,6 +1,8 @@
-// Direct light pass: L_d = ρ/π · I(ω) · max(0, n·l) / d² from the headlamp, the camera flash
-// and every punctual light.
+// Direct light pass: L_d = f(l, v) · I(ω) · max(0, n·l) / d² from the headlamp, the camera
+// flash and every punctual light, f being glTF's metallic-roughness BRDF (brdf.wgsl); ρ/π for
+// Lambertian surfaces.
 #include "common.wgsl"
+#include "brdf.wgsl"
 
 @group(1) @binding(0) var gbuffer_albedo: texture_2d<f32>;
 @group(1) @binding(1) var gbuffer_normal: texture_2d<f32>;
@@ -8,6 +10,23 @@
 // The detached headlamp's shadow map (reversed Z) and a bilinear GreaterEqual comparison.
 @group(1) @binding(3) var lamp_depth: texture_depth_2d;
 @group(1) @binding(4) var lamp_shadow: sampler_comparison;
+// rgb: F0; a: perceptual roughness, 0 for Lambertian surfaces.
+@group(1) @binding(5) var gbuffer_specular: texture_2d<f32>;
+
+// A surface point as the BRDF needs it: position, unit normal, unit direction to the eye,
+// diffuse albedo, specular row.
+struct Surface {
+    x: vec3f,
+    n: vec3f,
+    v: vec3f,
+    rho: vec3f,
+    specular: vec4f,
+};
+
+// Reflected radiance towards the eye of `irradiance` arriving along unit direction l.
+fn reflected(s: Surface, l: vec3f, irradiance: vec3f) -> vec3f {
+    return brdf(s.n, s.v, l, s.rho, s.specular) * irradiance;
+}
 
 // Shadow bias, in lamp-map texel footprints at the receiver, applied by moving the receiver
 // towards the lamp. A lamp texel covers `footprint` metres across the ray at the receiver, and
@@ -26,12 +45,16 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenOut {
     return fullscreen_vertex(index);
 }
 
-fn punctual(light: Light, x: vec3f, n: vec3f) -> vec3f {
+// Radiance a punctual light reflects off s towards the eye.
+fn punctual(light: Light, s: Surface) -> vec3f {
     let kind = u32(light.direction_kind.w);
     if kind == 2u {
         // Directional: irradiance E = intensity · cos.
-        return light.color.rgb * max(0.0, dot(n, -light.direction_kind.xyz));
+        let l = -light.direction_kind.xyz;
+        return reflected(s, l, light.color.rgb * max(0.0, dot(s.n, l)));
     }
+    let x = s.x;
+    let n = s.n;
     let to_light = light.position_range.xyz - x;
     let d2 = max(dot(to_light, to_light), 1e-8);
     let l = to_light * inverseSqrt(d2);
@@ -47,7 +70,7 @@ fn punctual(light: Light, x: vec3f, n: vec3f) -> vec3f {
         let cos_angle = dot(-l, light.direction_kind.xyz);
         intensity *= smoothstep(light.cone.y, light.cone.x, cos_angle);
     }
-    return intensity * max(0.0, dot(n, l)) / d2;
+    return reflected(s, l, intensity * max(0.0, dot(n, l)) / d2);
 }
 
 // Fraction of the detached headlamp that x (normal n, unit direction l to the lamp at
@@ -84,10 +107,13 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     }
     let n = normal.xyz;
     let x = textureLoad(gbuffer_position, texel, 0).xyz;
-    let rho = textureLoad(gbuffer_albedo, texel, 0).rgb;
+    let to_eye = globals.camera_pos.xyz - x;
+    let eye_d2 = max(dot(to_eye, to_eye), 1e-8);
+    let v = to_eye * inverseSqrt(eye_d2);
+    let s = Surface(x, n, v, textureLoad(gbuffer_albedo, texel, 0).rgb, textureLoad(gbuffer_specular, texel, 0));
 
-    // Irradiance-like sum Σ I·cos/d² (and E of directional lights); radiance is ρ/π times it.
-    var e = vec3f(0.0);
+    // Σ f · I·cos/d² over the lights (f · E for directional ones).
+    var radiance = vec3f(0.0);
     if globals.lamp_pos.w > 0.5 {
         let to_lamp = globals.lamp_pos.xyz - x;
         let d2 = max(dot(to_lamp, to_lamp), 1e-8);
@@ -97,18 +123,16 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
         if globals.params.z > 0.5 && any(lamp > vec3f(0.0)) {
             lamp *= lamp_visibility(x, n, l, sqrt(d2));
         }
-        e += lamp;
+        radiance += reflected(s, l, lamp);
     }
     // The camera flash, isotropic at the eye. No shadow test: every point the eye sees has a
     // clear line to a light at the eye.
     if any(globals.camera_flash.rgb > vec3f(0.0)) {
-        let to_eye = globals.camera_pos.xyz - x;
-        let d2 = max(dot(to_eye, to_eye), 1e-8);
-        e += globals.camera_flash.rgb * max(0.0, dot(n, to_eye * inverseSqrt(d2))) / d2;
+        radiance += reflected(s, v, globals.camera_flash.rgb * max(0.0, dot(n, v)) / eye_d2);
     }
     let count = u32(globals.params.y);
     for (var i = 0u; i < count; i++) {
-        e += punctual(lights[i], x, n);
+        radiance += punctual(lights[i], s);
     }
-    return vec4f(rho / PI * e, 1.0);
+    return vec4f(radiance, 1.0);
 }
