@@ -105,7 +105,9 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     if normal.w == 0.0 {
         return vec4f(0.0, 0.0, 0.0, 1.0);
     }
-    let n = normal.xyz;
+    // Renormalised: the half-float normal is off unit length by up to ~5e-4, which GGX's peak
+    // (where 1 − (n·h)²·(1 − α²) ≈ α²) turns into several per cent at low roughness.
+    let n = normalize(normal.xyz);
     let x = textureLoad(gbuffer_position, texel, 0).xyz;
     let to_eye = globals.camera_pos.xyz - x;
     let eye_d2 = max(dot(to_eye, to_eye), 1e-8);
