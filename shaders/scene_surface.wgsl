@@ -21,7 +21,7 @@ struct Material {
     // x: alpha cutoff (fs_masked only: MASK, and BLEND drawn as MASK at 0.5).
     alpha: vec4f,
     // x: metallic factor; y: roughness factor; z: 1 for glTF's metallic-roughness BRDF, 0 for
-    // Lambertian.
+    // Lambertian; w: 1 when there is a metallic-roughness texture.
     reflection: vec4f,
 };
 
@@ -107,8 +107,12 @@ fn surface_reflection(in: VertexOut, base_color: vec3f) -> SurfaceReflection {
         out.specular = vec4f(0.0);
         return out;
     }
-    let uv = texture_uv(in, material.metallic_roughness_uv_0, material.metallic_roughness_uv_1);
-    let texel = textureSample(metallic_roughness_texture, metallic_roughness_sampler, uv);
+    // Most materials have no texture: skip the sample (a uniform branch; lavapipe pays per sample).
+    var texel = vec4f(1.0);
+    if material.reflection.w > 0.5 {
+        let uv = texture_uv(in, material.metallic_roughness_uv_0, material.metallic_roughness_uv_1);
+        texel = textureSample(metallic_roughness_texture, metallic_roughness_sampler, uv);
+    }
     let metallic = clamp(material.reflection.x * texel.b, 0.0, 1.0);
     let roughness = clamp(material.reflection.y * texel.g, MIN_ROUGHNESS, 1.0);
     out.diffuse = (1.0 - metallic) * base_color;

@@ -64,7 +64,7 @@ struct MaterialUniform {
     /// x: the alpha cutoff (read by `fs_masked` only).
     alpha: [f32; 4],
     /// x: metallic factor, y: roughness factor, z: 1 for the metallic-roughness BRDF, 0 for
-    /// Lambertian.
+    /// Lambertian; w: 1 when there is a metallic-roughness texture.
     reflection: [f32; 4],
 }
 
@@ -72,7 +72,9 @@ struct MaterialUniform {
 fn reflection_row(r: &Reflection) -> [f32; 4] {
     match *r {
         Reflection::Lambertian => [0.0, 1.0, 0.0, 0.0],
-        Reflection::MetallicRoughness { metallic, roughness, .. } => [metallic, roughness, 1.0, 0.0],
+        Reflection::MetallicRoughness { metallic, roughness, texture } => {
+            [metallic, roughness, 1.0, if texture.is_some() { 1.0 } else { 0.0 }]
+        }
     }
 }
 
@@ -169,9 +171,12 @@ impl GpuScene {
             let used: Vec<bool> = (0..scene.textures.len())
                 .map(|i| {
                     scene.materials.iter().any(|m| {
-                        let colour = m.base_color_texture.iter().chain(&m.emissive_texture);
                         let uses = |t: &TextureRef| t.texture == i;
-                        if linear { m.metallic_roughness_texture().is_some_and(uses) } else { colour.into_iter().any(uses) }
+                        if linear {
+                            m.metallic_roughness_texture().is_some_and(uses)
+                        } else {
+                            m.base_color_texture.iter().chain(&m.emissive_texture).any(uses)
+                        }
                     })
                 })
                 .collect();

@@ -222,7 +222,8 @@ fn the_gbuffer_albedo_is_the_diffuse_part() {
     let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
     let centre = Vec3::new(0.0, 0.0, -2.0);
     let lambertian = Material { base_color: [0.8, 0.8, 0.8, 1.0], ..Material::default() };
-    for (material, want) in [(pbr(0.8, 0.0, 0.4), 0.8), (pbr(0.8, 0.25, 0.4), 0.6), (pbr(0.8, 1.0, 0.4), 0.0), (lambertian, 0.8)]
+    for (material, want) in
+        [(pbr(0.8, 0.0, 0.4), 0.8), (pbr(0.8, 0.25, 0.4), 0.6), (pbr(0.8, 1.0, 0.4), 0.0), (lambertian, 0.8)]
     {
         let img = render(&gpu, &plane(centre, Vec3::Z, material.clone()), "albedo", uniform_lamp(1.0, true), vec![]);
         let got = img.get_pixel(SIZE.0 / 2, SIZE.1 / 2)[0];

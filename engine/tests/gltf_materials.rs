@@ -301,7 +301,10 @@ fn a_primitive_without_material_is_the_specs_white_rough_metal() {
             let d2 = (pixel_ray(&camera(), x, y) * 2.0).length_squared();
             let want = 1.0 / (4.0 * std::f32::consts::PI * d2);
             let got = rgb(&direct, x, y);
-            assert!(((got - Vec3::splat(want)).abs() / want).max_element() < 0.01, "pixel ({x}, {y}): {got}, expected {want}");
+            assert!(
+                ((got - Vec3::splat(want)).abs() / want).max_element() < 0.01,
+                "pixel ({x}, {y}): {got}, expected {want}"
+            );
             checked += 1;
         }
     }
@@ -334,7 +337,11 @@ fn a_metallic_roughness_texture_is_read_linearly_from_blue_and_scales_the_metall
         let right = uv.x > 0.5;
         let want = if right { (1.0 - 128.0 / 255.0) * 0.5 } else { 0.0 };
         let got = rgb(&albedo, x, y);
-        assert!((got - Vec3::splat(want)).abs().max_element() < 2e-3, "pixel ({x}, {y}), u = {}: {got}, expected {want}", uv.x);
+        assert!(
+            (got - Vec3::splat(want)).abs().max_element() < 2e-3,
+            "pixel ({x}, {y}), u = {}: {got}, expected {want}",
+            uv.x
+        );
         counts[usize::from(right)] += 1;
     }
     assert!(counts.iter().all(|&n| n > 500), "{counts:?}");

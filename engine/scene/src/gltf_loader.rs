@@ -352,9 +352,7 @@ impl Builder<'_> {
         }
 
         let material = self.material(prim.material())?;
-        let uses_uv1 = {
-            self.scene.materials[material].textures().any(|t| t.tex_coord == 1)
-        };
+        let uses_uv1 = self.scene.materials[material].textures().any(|t| t.tex_coord == 1);
         if uses_uv1 && uvs1.is_none() {
             let message =
                 format!("{label}: its material's textures read TEXCOORD_1, which it lacks; TEXCOORD_0 is used");
