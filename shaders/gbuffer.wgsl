@@ -1,5 +1,5 @@
-// G-buffer pass: rasterises the scene from the camera into albedo, world normal, world position
-// (+ view depth) and emissive targets.
+// G-buffer pass: rasterises the scene from the camera into diffuse albedo, world normal, world
+// position (+ view depth), emissive and specular (F0, roughness) targets.
 #include "common.wgsl"
 #include "scene_surface.wgsl"
 
@@ -13,10 +13,12 @@ struct GBufferOut {
     @location(1) normal: vec4f,
     @location(2) position: vec4f,
     @location(3) emissive: vec4f,
+    @location(4) specular: vec4f,
 };
 
-// The G-buffer texel of a surface point; ρ and emitted radiance from the material or instance.
-fn gbuffer_texel(world: vec3f, normal: vec3f, front: bool, albedo: vec3f, emissive: vec3f) -> GBufferOut {
+// The G-buffer texel of a surface point; reflection and emitted radiance from the material or
+// instance.
+fn gbuffer_texel(world: vec3f, normal: vec3f, front: bool, surface: SurfaceReflection, emissive: vec3f) -> GBufferOut {
     // Surfaces are lit on the side the viewer sees: single-sided walls of any winding work.
     var n = normalize(normal);
     if !front {
@@ -24,16 +26,18 @@ fn gbuffer_texel(world: vec3f, normal: vec3f, front: bool, albedo: vec3f, emissi
     }
     let view_depth = -(globals.view * vec4f(world, 1.0)).z;
     var out: GBufferOut;
-    out.albedo = vec4f(albedo, 1.0);
+    out.albedo = vec4f(surface.diffuse, 1.0);
     out.normal = vec4f(n, 1.0);
     out.position = vec4f(world, view_depth);
     out.emissive = vec4f(emissive, 1.0);
+    out.specular = surface.specular;
     return out;
 }
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
-    return gbuffer_texel(in.world, in.normal, front, surface_base_color(in).rgb, surface_emissive(in));
+    let surface = surface_reflection(in, surface_base_color(in).rgb);
+    return gbuffer_texel(in.world, in.normal, front, surface, surface_emissive(in));
 }
 
 // Alpha-tested materials: a fragment whose alpha is below the cutoff is a hole. A separate
@@ -45,10 +49,10 @@ fn fs_masked(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     if surface_cut_out(base_color) {
         discard;
     }
-    return gbuffer_texel(in.world, in.normal, front, base_color.rgb, emissive);
+    return gbuffer_texel(in.world, in.normal, front, surface_reflection(in, base_color.rgb), emissive);
 }
 
-// Dynamic instances: same targets, colours from the instance instead of a material.
+// Dynamic instances: same targets, colours from the instance instead of a material; Lambertian.
 @vertex
 fn vs_instance(v: VertexIn, i: InstanceIn) -> InstanceOut {
     return instance_vertex(v, i, globals.view_proj);
@@ -56,5 +60,6 @@ fn vs_instance(v: VertexIn, i: InstanceIn) -> InstanceOut {
 
 @fragment
 fn fs_instance(in: InstanceOut, @builtin(front_facing) front: bool) -> GBufferOut {
-    return gbuffer_texel(in.world, in.normal, front, in.base_color, in.emissive);
+    let surface = SurfaceReflection(in.base_color, vec4f(0.0));
+    return gbuffer_texel(in.world, in.normal, front, surface, in.emissive);
 }

@@ -1,7 +1,7 @@
 // Lamp view pass: rasterises the scene from the detached headlamp's frustum into the lamp's own
-// G-buffer (a reflective shadow map): albedo ρ, world normal facing the lamp, world position
-// (+ distance along the lamp's view axis) and reversed-Z depth, which the direct light pass
-// uses as the lamp's shadow map.
+// G-buffer (a reflective shadow map): diffuse albedo ρ = (1 − metallic)·base colour, world
+// normal facing the lamp, world position (+ distance along the lamp's view axis) and reversed-Z
+// depth, which the direct light pass uses as the lamp's shadow map.
 #include "common.wgsl"
 #include "scene_surface.wgsl"
 
@@ -34,7 +34,7 @@ fn lamp_texel(world: vec3f, normal: vec3f, albedo: vec3f) -> LampOut {
 
 @fragment
 fn fs_main(in: VertexOut) -> LampOut {
-    return lamp_texel(in.world, in.normal, surface_base_color(in).rgb);
+    return lamp_texel(in.world, in.normal, surface_reflection(in, surface_base_color(in).rgb).diffuse);
 }
 
 // Alpha-tested materials: the lamp sees through their holes (shadows and the GI's flux).
@@ -44,7 +44,7 @@ fn fs_masked(in: VertexOut) -> LampOut {
     if surface_cut_out(base_color) {
         discard;
     }
-    return lamp_texel(in.world, in.normal, base_color.rgb);
+    return lamp_texel(in.world, in.normal, surface_reflection(in, base_color.rgb).diffuse);
 }
 
 // Dynamic instances: they shadow the lamp and reflect its light like the level.

@@ -15,6 +15,14 @@ const SHADOW_SLOPE_TEXELS: f32 = 2.5;
 // tan θ is capped (θ ≈ 84°): beyond it the cosine leaves almost no light to shadow.
 const SHADOW_MAX_SLOPE: f32 = 10.0;
 
+// Unit direction from x to a punctual light (towards where a directional light comes from).
+fn light_direction(light: Light, x: vec3f) -> vec3f {
+    if u32(light.direction_kind.w) == 2u {
+        return -light.direction_kind.xyz;
+    }
+    return normalize(light.position_range.xyz - x);
+}
+
 fn punctual(light: Light, x: vec3f, n: vec3f) -> vec3f {
     let kind = u32(light.direction_kind.w);
     if kind == 2u {

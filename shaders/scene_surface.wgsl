@@ -1,3 +1,5 @@
+#include "brdf.wgsl"
+
 // What every pass that rasterises the scene shares: the vertex layout, the material (group 1)
 // and how a fragment's albedo, alpha and emission are found.
 
@@ -13,8 +15,14 @@ struct Material {
     // The same for the emissive texture.
     emissive_uv_0: vec4f,
     emissive_uv_1: vec4f,
+    // The same for the metallic-roughness texture.
+    metallic_roughness_uv_0: vec4f,
+    metallic_roughness_uv_1: vec4f,
     // x: alpha cutoff (fs_masked only: MASK, and BLEND drawn as MASK at 0.5).
     alpha: vec4f,
+    // x: metallic factor; y: roughness factor; z: 1 for glTF's metallic-roughness BRDF, 0 for
+    // Lambertian; w: 1 when there is a metallic-roughness texture.
+    reflection: vec4f,
 };
 
 @group(1) @binding(0) var<uniform> material: Material;
@@ -24,6 +32,9 @@ struct Material {
 @group(1) @binding(2) var base_color_sampler: sampler;
 @group(1) @binding(3) var emissive_texture: texture_2d<f32>;
 @group(1) @binding(4) var emissive_sampler: sampler;
+// Linear: B = metallic, G = roughness.
+@group(1) @binding(5) var metallic_roughness_texture: texture_2d<f32>;
+@group(1) @binding(6) var metallic_roughness_sampler: sampler;
 
 struct VertexIn {
     @location(0) position: vec3f,
@@ -72,6 +83,41 @@ fn surface_base_color(in: VertexOut) -> vec4f {
 fn surface_emissive(in: VertexOut) -> vec3f {
     let uv = texture_uv(in, material.emissive_uv_0, material.emissive_uv_1);
     return material.emissive.rgb * textureSample(emissive_texture, emissive_sampler, uv).rgb;
+}
+
+// The smallest perceptual roughness drawn: below it a point light's highlight (GGX's peak
+// 1/(π·roughness⁴)) overflows the half-float radiance targets. Filament's value for half floats.
+const MIN_ROUGHNESS: f32 = 0.089;
+
+// How a surface point reflects light, as the G-buffers store it.
+struct SurfaceReflection {
+    // The diffuse albedo ρ = (1 − metallic)·base colour: what the GI's flux and the diffuse
+    // lobe use.
+    diffuse: vec3f,
+    // rgb: Fresnel reflectance at normal incidence F0 = mix(0.04, base colour, metallic);
+    // a: perceptual roughness (≥ MIN_ROUGHNESS). All 0 for a Lambertian surface.
+    specular: vec4f,
+};
+
+// glTF's metallic-roughness split of a base colour, or a Lambertian surface.
+fn surface_reflection(in: VertexOut, base_color: vec3f) -> SurfaceReflection {
+    var out: SurfaceReflection;
+    if material.reflection.z < 0.5 {
+        out.diffuse = base_color;
+        out.specular = vec4f(0.0);
+        return out;
+    }
+    // Most materials have no texture: skip the sample (a uniform branch; lavapipe pays per sample).
+    var texel = vec4f(1.0);
+    if material.reflection.w > 0.5 {
+        let uv = texture_uv(in, material.metallic_roughness_uv_0, material.metallic_roughness_uv_1);
+        texel = textureSample(metallic_roughness_texture, metallic_roughness_sampler, uv);
+    }
+    let metallic = clamp(material.reflection.x * texel.b, 0.0, 1.0);
+    let roughness = clamp(material.reflection.y * texel.g, MIN_ROUGHNESS, 1.0);
+    out.diffuse = (1.0 - metallic) * base_color;
+    out.specular = vec4f(mix(vec3f(BRDF_DIELECTRIC_F0), base_color, metallic), roughness);
+    return out;
 }
 
 // Whether an alpha-tested fragment is cut out.

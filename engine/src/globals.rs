@@ -40,11 +40,14 @@ impl CoreLayouts {
             label: Some("material"),
             entries: &[
                 uniform_entry(0, S::FRAGMENT),
-                // Base colour texture and its sampler, emissive texture and its sampler.
+                // Base colour texture and its sampler, emissive texture and its sampler,
+                // metallic-roughness texture and its sampler.
                 texture_entry(1, S::FRAGMENT, true),
                 sampler_entry(2, S::FRAGMENT),
                 texture_entry(3, S::FRAGMENT, true),
                 sampler_entry(4, S::FRAGMENT),
+                texture_entry(5, S::FRAGMENT, true),
+                sampler_entry(6, S::FRAGMENT),
             ],
         });
         Self { globals, material }

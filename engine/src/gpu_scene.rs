@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 
 use bytemuck::{Pod, Zeroable};
-use scene::{Filter, Material, Scene, Texture, TextureRef, Vertex, Wrap};
+use scene::{Filter, Material, Reflection, Scene, Texture, TextureRef, Vertex, Wrap};
 use wgpu::util::DeviceExt;
 
 use crate::globals::CoreLayouts;
@@ -60,8 +60,22 @@ struct MaterialUniform {
     /// uv set (0 or 1).
     base_color_uv: [[f32; 4]; 2],
     emissive_uv: [[f32; 4]; 2],
+    metallic_roughness_uv: [[f32; 4]; 2],
     /// x: the alpha cutoff (read by `fs_masked` only).
     alpha: [f32; 4],
+    /// x: metallic factor, y: roughness factor, z: 1 for the metallic-roughness BRDF, 0 for
+    /// Lambertian; w: 1 when there is a metallic-roughness texture.
+    reflection: [f32; 4],
+}
+
+/// The uniform's `reflection` row.
+fn reflection_row(r: &Reflection) -> [f32; 4] {
+    match *r {
+        Reflection::Lambertian => [0.0, 1.0, 0.0, 0.0],
+        Reflection::MetallicRoughness { metallic, roughness, texture } => {
+            [metallic, roughness, 1.0, if texture.is_some() { 1.0 } else { 0.0 }]
+        }
+    }
 }
 
 /// The uniform rows of a texture slot's uv map (identity on set 0 when there is no texture).
@@ -151,26 +165,45 @@ impl GpuScene {
             samplers.entry(*s).or_insert_with(|| device.create_sampler(&sampler_descriptor(s))).clone()
         };
         let white = Texture { name: "white".into(), width: 1, height: 1, rgba8: vec![255; 4] };
-        let textures: Vec<wgpu::TextureView> = scene.textures.iter().map(|t| upload_texture(gpu, t)).collect();
-        let white = upload_texture(gpu, &white);
+        // Colour textures are sRGB-encoded, metallic-roughness ones linear (glTF's rule): each
+        // image is uploaded in the encodings its uses need.
+        let upload_as = |linear: bool| -> Vec<Option<wgpu::TextureView>> {
+            let used: Vec<bool> = (0..scene.textures.len())
+                .map(|i| {
+                    scene.materials.iter().any(|m| {
+                        let uses = |t: &TextureRef| t.texture == i;
+                        if linear {
+                            m.metallic_roughness_texture().is_some_and(uses)
+                        } else {
+                            m.base_color_texture.iter().chain(&m.emissive_texture).any(uses)
+                        }
+                    })
+                })
+                .collect();
+            scene.textures.iter().zip(used).map(|(t, used)| used.then(|| upload_texture(gpu, t, linear))).collect()
+        };
+        let (srgb, linear) = (upload_as(false), upload_as(true));
+        let white = upload_texture(gpu, &white, false);
         let materials = scene
             .materials
             .iter()
             .map(|m| {
                 // A missing texture samples white: the factor alone.
-                let slot = |t: Option<&TextureRef>| {
-                    let view = t.and_then(|t| textures.get(t.texture)).unwrap_or(&white);
-                    (view.clone(), t.map(|t| t.sampler).unwrap_or_default())
+                let mut slot = |t: Option<&TextureRef>, views: &[Option<wgpu::TextureView>]| {
+                    let view = t.and_then(|t| views.get(t.texture)).and_then(Option::as_ref).unwrap_or(&white);
+                    (view.clone(), sampler(&t.map(|t| t.sampler).unwrap_or_default()))
                 };
-                let (base_view, base_sampler) = slot(m.base_color_texture.as_ref());
-                let (emissive_view, emissive_sampler) = slot(m.emissive_texture.as_ref());
-                let (base_sampler, emissive_sampler) = (sampler(&base_sampler), sampler(&emissive_sampler));
+                let (base_view, base_sampler) = slot(m.base_color_texture.as_ref(), &srgb);
+                let (emissive_view, emissive_sampler) = slot(m.emissive_texture.as_ref(), &srgb);
+                let (mr_view, mr_sampler) = slot(m.metallic_roughness_texture(), &linear);
                 let uniform = MaterialUniform {
                     base_color: m.base_color,
                     emissive: [m.emissive[0], m.emissive[1], m.emissive[2], 0.0],
                     base_color_uv: uv_rows(m.base_color_texture.as_ref()),
                     emissive_uv: uv_rows(m.emissive_texture.as_ref()),
+                    metallic_roughness_uv: uv_rows(m.metallic_roughness_texture()),
                     alpha: [m.alpha_cutoff().unwrap_or(0.0), 0.0, 0.0, 0.0],
+                    reflection: reflection_row(&m.reflection),
                 };
                 let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(&m.name),
@@ -192,6 +225,8 @@ impl GpuScene {
                             binding: 4,
                             resource: wgpu::BindingResource::Sampler(&emissive_sampler),
                         },
+                        wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&mr_view) },
+                        wgpu::BindGroupEntry { binding: 6, resource: wgpu::BindingResource::Sampler(&mr_sampler) },
                     ],
                 })
             })
@@ -231,8 +266,8 @@ impl GpuScene {
     }
 }
 
-/// Uploads an sRGB texture with a box-filtered mip chain built on the CPU.
-fn upload_texture(gpu: &Gpu, t: &Texture) -> wgpu::TextureView {
+/// Uploads a texture, sRGB-encoded or `linear`, with a box-filtered mip chain built on the CPU.
+fn upload_texture(gpu: &Gpu, t: &Texture, linear: bool) -> wgpu::TextureView {
     let mip_count = 32 - t.width.max(t.height).max(1).leading_zeros();
     let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some(&t.name),
@@ -240,7 +275,7 @@ fn upload_texture(gpu: &Gpu, t: &Texture) -> wgpu::TextureView {
         mip_level_count: mip_count,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8UnormSrgb,
+        format: if linear { wgpu::TextureFormat::Rgba8Unorm } else { wgpu::TextureFormat::Rgba8UnormSrgb },
         usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
         view_formats: &[],
     });

@@ -6,6 +6,7 @@ pub const ENGINE_INCLUDES: &[(&str, &str)] = &[
     ("common.wgsl", include_str!("../../shaders/common.wgsl")),
     ("scene_surface.wgsl", include_str!("../../shaders/scene_surface.wgsl")),
     ("lights.wgsl", include_str!("../../shaders/lights.wgsl")),
+    ("brdf.wgsl", include_str!("../../shaders/brdf.wgsl")),
 ];
 
 /// Replaces each `#include "name"` line with the named source (engine includes first, then

@@ -270,7 +270,7 @@ fn vertex_colours_tint_the_albedo_per_vertex() {
         "colours",
         rect,
         Some((&colours, "\"componentType\": 5121, \"normalized\": true, \"type\": \"VEC4\"")),
-        Some("{\"pbrMetallicRoughness\": {\"baseColorFactor\": [0.5, 1.0, 1.0, 1.0]}}"),
+        Some("{\"pbrMetallicRoughness\": {\"baseColorFactor\": [0.5, 1.0, 1.0, 1.0], \"metallicFactor\": 0.0}}"),
         "",
     );
 
@@ -292,20 +292,67 @@ fn vertex_colours_tint_the_albedo_per_vertex() {
 }
 
 #[test]
-fn a_primitive_without_material_has_albedo_one() {
-    // glTF 2.0's default material is white (Cameras.gltf used to render 20 % dark).
+fn a_primitive_without_material_is_the_specs_white_rough_metal() {
+    // glTF 2.0's default material: base colour 1, metallic 1, roughness 1. A metal has no
+    // diffuse albedo (nothing for the GI to reflect); its specular lobe under the lamp at the
+    // eye gives f·cos = F·D·V·cos = 1·(1/π)·(1/(4 cos))·cos: radiance I/(4π d²) at any angle.
     let rect = Rect::new(-1.0, 1.0, -0.6, 0.6, -2.0);
     let scene = load_quad_gltf("no_material", rect, None, None, "");
     let gpu = gpu();
     let (_, albedo) = render(&gpu, &scene, "albedo", &view(camera(), lamp()));
+    let (_, direct) = render(&gpu, &scene, "direct", &view(camera(), lamp()));
     let mut checked = 0;
     for (x, y) in pixels() {
         if rect.uv_at_pixel(x, y, 0.02).is_some() {
-            assert_eq!(rgb(&albedo, x, y), Vec3::ONE, "pixel ({x}, {y})");
+            assert_eq!(rgb(&albedo, x, y), Vec3::ZERO, "pixel ({x}, {y})");
+            // The ray's z is -1: the quad at z = -2 is twice it away.
+            let d2 = (pixel_ray(&camera(), x, y) * 2.0).length_squared();
+            let want = 1.0 / (4.0 * std::f32::consts::PI * d2);
+            let got = rgb(&direct, x, y);
+            assert!(
+                ((got - Vec3::splat(want)).abs() / want).max_element() < 0.01,
+                "pixel ({x}, {y}): {got}, expected {want}"
+            );
             checked += 1;
         }
     }
     assert!(checked > 1500, "only {checked} pixels on the quad");
+}
+
+#[test]
+fn a_metallic_roughness_texture_is_read_linearly_from_blue_and_scales_the_metallic_factor() {
+    // Base colour 0.5, metallicFactor 1 × texture [blue 255 | blue 128] (nearest): the left half
+    // is a metal (diffuse albedo 0), the right half metallic 128/255 read linearly (an sRGB
+    // decode would give 0.216), diffuse albedo (1 − 0.502)·0.5.
+    let rect = Rect::new(-1.0, 1.0, -0.6, 0.6, -2.0);
+    let texture = png_uri(2, 1, &[0, 255, 255, 255, 0, 255, 128, 255]);
+    let material = "{\"pbrMetallicRoughness\": {\"baseColorFactor\": [0.5, 0.5, 0.5, 1.0],
+        \"metallicRoughnessTexture\": {\"index\": 0}}}";
+    let rest = format!(
+        ", \"textures\": [{{\"source\": 0, \"sampler\": 0}}],
+          \"samplers\": [{{\"magFilter\": 9728, \"minFilter\": 9728, \"wrapS\": 33071, \"wrapT\": 33071}}],
+          \"images\": [{{\"uri\": \"{texture}\"}}]"
+    );
+    let scene = load_quad_gltf("metallic_roughness", rect, None, Some(material), &rest);
+    let gpu = gpu();
+    let (_, albedo) = render(&gpu, &scene, "albedo", &view(camera(), lamp()));
+    let mut counts = [0; 2];
+    for (x, y) in pixels() {
+        let Some(uv) = rect.uv_at_pixel(x, y, 0.02) else { continue };
+        if (uv.x - 0.5).abs() < 0.05 {
+            continue;
+        }
+        let right = uv.x > 0.5;
+        let want = if right { (1.0 - 128.0 / 255.0) * 0.5 } else { 0.0 };
+        let got = rgb(&albedo, x, y);
+        assert!(
+            (got - Vec3::splat(want)).abs().max_element() < 2e-3,
+            "pixel ({x}, {y}), u = {}: {got}, expected {want}",
+            uv.x
+        );
+        counts[usize::from(right)] += 1;
+    }
+    assert!(counts.iter().all(|&n| n > 500), "{counts:?}");
 }
 
 /// The texel a nearest-filtering sampler picks along u for a two-texel-wide image.

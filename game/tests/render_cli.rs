@@ -5,6 +5,8 @@ use std::f32::consts::PI;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
+use glam::Vec3;
+
 mod common;
 
 use common::{headlamp, scratch};
@@ -27,7 +29,7 @@ fn write_plane_gltf(path: &Path, z: f32, rho: f32) {
     let json = format!(
         r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
         "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1,"material":0}}]}}],
-        "materials":[{{"pbrMetallicRoughness":{{"baseColorFactor":[{rho},{rho},{rho},1.0]}}}}],
+        "materials":[{{"pbrMetallicRoughness":{{"baseColorFactor":[{rho},{rho},{rho},1.0],"metallicFactor":0.0}}}}],
         "buffers":[{{"byteLength":{len},"uri":"data:application/octet-stream;base64,{b64}"}}],
         "bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":48}},{{"buffer":0,"byteOffset":48,"byteLength":12}}],
         "accessors":[{{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-{s},-{s},{z}],"max":[{s},{s},{z}]}},
@@ -35,6 +37,13 @@ fn write_plane_gltf(path: &Path, z: f32, rho: f32) {
         len = bytes.len()
     );
     std::fs::write(path, json).unwrap();
+}
+
+/// glTF's BRDF for a rough dielectric (metallic 0, roughness 1: D = 1/π, V = 1/(2(n·l + n·v)))
+/// of albedo `rho`, in sr⁻¹.
+fn rough_dielectric(rho: f32, n_l: f32, n_v: f32, v_h: f32) -> f32 {
+    let fresnel = 0.04 + 0.96 * (1.0 - v_h).powi(5);
+    (1.0 - fresnel) * rho / PI + fresnel / PI * 0.5 / (n_l + n_v)
 }
 
 fn base64(data: &[u8]) -> String {
@@ -55,7 +64,7 @@ fn base64(data: &[u8]) -> String {
 }
 
 #[test]
-fn exr_of_a_bare_gltf_reads_rho_over_pi_d_squared() {
+fn exr_of_a_bare_gltf_reads_the_brdf_times_i_over_d_squared() {
     let dir = scratch("plane");
     let (d, rho) = (3.0f32, 0.6f32);
     let gltf = dir.join("plane.gltf");
@@ -80,7 +89,8 @@ fn exr_of_a_bare_gltf_reads_rho_over_pi_d_squared() {
     let img = image::open(&exr).unwrap().into_rgb32f();
     let centre: f32 =
         [(31, 31), (32, 31), (31, 32), (32, 32)].iter().map(|&(x, y)| img.get_pixel(x, y)[0]).sum::<f32>() / 4.0;
-    let want = rho / (PI * d * d);
+    // A rough dielectric facing the lamp at the eye: f = (0.96·ρ + 0.01)/π.
+    let want = rough_dielectric(rho, 1.0, 1.0, 1.0) / (d * d);
     assert!((centre - want).abs() / want < 0.01, "centre radiance {centre}, expected {want}");
 }
 
@@ -114,9 +124,12 @@ fn a_lamp_put_down_with_lamp_keeps_the_radiometry() {
     let img = image::open(&exr).unwrap().into_rgb32f();
     let centre: f32 =
         [(31, 31), (32, 31), (31, 32), (32, 32)].iter().map(|&(x, y)| img.get_pixel(x, y)[0]).sum::<f32>() / 4.0;
-    // The centre sees (0, 0, -d); the lamp is off to the side: ρ/π · cos / r².
+    // The centre sees (0, 0, -d); the lamp is off to the side: f · cos / r², f for the lamp's
+    // direction l and the eye's v = +Z.
     let r2 = lamp_x * lamp_x + d * d;
-    let want = rho / PI * (d / r2.sqrt()) / r2;
+    let l = Vec3::new(lamp_x, 0.0, d) / r2.sqrt();
+    let h = (l + Vec3::Z).normalize();
+    let want = rough_dielectric(rho, l.z, 1.0, h.z) * l.z / r2;
     assert!((centre - want).abs() / want < 0.01, "centre radiance {centre}, expected {want}");
 }
 

@@ -25,17 +25,17 @@ use crate::image_loader::{decode_texture, file_label};
 use crate::limits::{MAX_FILE_BYTES, MAX_TRIANGLES};
 use crate::sources::Sources;
 use crate::{
-    AlphaMode, Filter, LightKind, Material, Mesh, NodeExtras, Projection, PunctualLight, Sampler, Scene, SceneCamera,
-    TextureRef, TextureTransform, Wrap,
+    AlphaMode, Filter, LightKind, Material, Mesh, NodeExtras, Projection, PunctualLight, Reflection, Sampler, Scene,
+    SceneCamera, TextureRef, TextureTransform, Wrap,
 };
 
 /// Loads a .gltf or .glb file (the container is recognised by its bytes, not its extension).
 ///
 /// The default scene is used (else scene 0, else every root node); meshes are baked to world
 /// space (with `TEXCOORD_0`/`_1` and `COLOR_0`), cameras and `KHR_lights_punctual` lights get
-/// world poses, node `extras` are kept. Materials keep base colour and emissive factors and
-/// textures (samplers, `KHR_texture_transform`, `KHR_materials_emissive_strength`), alpha
-/// mode and sidedness; a primitive without a material gets [`Material::gltf_default`].
+/// world poses, node `extras` are kept. Materials keep base colour, metallic-roughness and
+/// emissive factors and textures (samplers, `KHR_texture_transform`,
+/// `KHR_materials_emissive_strength`), alpha mode and sidedness; a primitive without a material gets [`Material::gltf_default`].
 pub fn load_gltf(path: &Path) -> Result<Scene, LoadError> {
     load_gltf_with(path, &mut Sources::new(None))
 }
@@ -352,10 +352,7 @@ impl Builder<'_> {
         }
 
         let material = self.material(prim.material())?;
-        let uses_uv1 = {
-            let m = &self.scene.materials[material];
-            [&m.base_color_texture, &m.emissive_texture].iter().any(|t| t.is_some_and(|t| t.tex_coord == 1))
-        };
+        let uses_uv1 = self.scene.materials[material].textures().any(|t| t.tex_coord == 1);
         if uses_uv1 && uvs1.is_none() {
             let message =
                 format!("{label}: its material's textures read TEXCOORD_1, which it lacks; TEXCOORD_0 is used");
@@ -399,6 +396,16 @@ impl Builder<'_> {
                     Some(info) => Some(self.texture_ref(idx, "emissive", &info)?),
                     None => None,
                 };
+                let (metallic, roughness) = (pbr.metallic_factor(), pbr.roughness_factor());
+                for (name, value) in [("metallicFactor", metallic), ("roughnessFactor", roughness)] {
+                    if !(0.0..=1.0).contains(&value) {
+                        return Err(self.corrupt(format!("material {idx}: {name} {value} must be between 0 and 1")));
+                    }
+                }
+                let texture = match pbr.metallic_roughness_texture() {
+                    Some(info) => Some(self.texture_ref(idx, "metallic-roughness", &info)?),
+                    None => None,
+                };
                 let alpha_mode = match m.alpha_mode() {
                     GltfAlphaMode::Opaque => AlphaMode::Opaque,
                     GltfAlphaMode::Mask => {
@@ -419,6 +426,7 @@ impl Builder<'_> {
                     emissive: factor.map(|c| c * strength),
                     emissive_texture,
                     alpha_mode,
+                    reflection: Reflection::MetallicRoughness { metallic, roughness, texture },
                     double_sided: m.double_sided(),
                 }
             }

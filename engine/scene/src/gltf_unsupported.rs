@@ -41,11 +41,6 @@ pub(crate) fn unsupported_features(doc: &Document) -> Vec<String> {
         if m.occlusion_texture().is_some() {
             out.push(format!("{name}: occlusion textures are not supported; ignored"));
         }
-        if m.pbr_metallic_roughness().metallic_roughness_texture().is_some() {
-            out.push(format!(
-                "{name}: metallic-roughness textures are not supported; the surface is diffuse (Lambertian)"
-            ));
-        }
     }
     out
 }

@@ -156,8 +156,32 @@ pub enum AlphaMode {
 /// The cutoff an [`AlphaMode::Blend`] material is drawn with.
 pub const BLEND_CUTOFF: f32 = 0.5;
 
-/// A Lambertian material: the diffuse albedo is `base_color × texture × vertex colour` (all
-/// linear), the emitted radiance `emissive × emissive texture`.
+/// How a surface reflects direct light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Reflection {
+    /// Diffuse only: radiance ρ/π × irradiance, ρ the base colour (OBJ's model, the engine's
+    /// default, dynamic instances).
+    Lambertian,
+    /// glTF 2.0's metallic-roughness BRDF (the spec's Appendix B): a diffuse lobe of albedo
+    /// (1 − metallic)·base colour weighted by 1 − F, plus a GGX specular lobe whose Fresnel F
+    /// starts at 0.04 for dielectrics and at the base colour for metals. The two factors are
+    /// multiplied by the texture's blue (metallic) and green (roughness) channels.
+    MetallicRoughness {
+        metallic: f32,
+        /// Perceptual roughness; α = roughness².
+        roughness: f32,
+        /// Linear (not sRGB) image: B = metallic, G = roughness.
+        texture: Option<TextureRef>,
+    },
+}
+
+impl Reflection {
+    /// glTF's defaults when a material says nothing: metallic 1, roughness 1, no texture.
+    pub const GLTF_DEFAULT: Self = Self::MetallicRoughness { metallic: 1.0, roughness: 1.0, texture: None };
+}
+
+/// A material: the base colour is `base_color × texture × vertex colour` (all linear), how it
+/// reflects light `reflection`, the emitted radiance `emissive × emissive texture`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
@@ -170,16 +194,39 @@ pub struct Material {
     /// Multiplies `emissive` (rgb); the image is stored sRGB-encoded.
     pub emissive_texture: Option<TextureRef>,
     pub alpha_mode: AlphaMode,
+    /// Lambertian, or glTF's metallic-roughness BRDF.
+    pub reflection: Reflection,
     /// Drawn from both sides (the back side's normal reversed); false culls back faces (those
     /// winding clockwise as seen), in every view.
     pub double_sided: bool,
 }
 
 impl Material {
-    /// glTF 2.0's default material, for primitives without one: base colour 1 (white), no
-    /// emission, opaque, single-sided.
+    /// glTF 2.0's default material, for primitives without one: base colour 1 (white),
+    /// metallic 1, roughness 1, no emission, opaque, single-sided.
     pub fn gltf_default() -> Self {
-        Self { name: "default".into(), base_color: [1.0; 4], double_sided: false, ..Self::default() }
+        Self {
+            name: "default".into(),
+            base_color: [1.0; 4],
+            reflection: Reflection::GLTF_DEFAULT,
+            double_sided: false,
+            ..Self::default()
+        }
+    }
+
+    /// The metallic-roughness texture, if the material reflects by that model and has one.
+    pub fn metallic_roughness_texture(&self) -> Option<&TextureRef> {
+        match &self.reflection {
+            Reflection::MetallicRoughness { texture, .. } => texture.as_ref(),
+            Reflection::Lambertian => None,
+        }
+    }
+
+    /// Every texture the material samples.
+    pub fn textures(&self) -> impl Iterator<Item = &TextureRef> {
+        [self.base_color_texture.as_ref(), self.emissive_texture.as_ref(), self.metallic_roughness_texture()]
+            .into_iter()
+            .flatten()
     }
 
     /// The alpha below which a fragment is discarded; None for opaque materials.
@@ -193,8 +240,8 @@ impl Material {
 }
 
 impl Default for Material {
-    /// The engine's (and OBJ's) default: albedo 0.8 grey, no emission, opaque, drawn from both
-    /// sides. glTF files use [`Material::gltf_default`] instead.
+    /// The engine's (and OBJ's) default: Lambertian, albedo 0.8 grey, no emission, opaque, drawn
+    /// from both sides. glTF files use [`Material::gltf_default`] instead.
     fn default() -> Self {
         Self {
             name: "default".into(),
@@ -203,6 +250,7 @@ impl Default for Material {
             emissive: [0.0; 3],
             emissive_texture: None,
             alpha_mode: AlphaMode::Opaque,
+            reflection: Reflection::Lambertian,
             double_sided: true,
         }
     }

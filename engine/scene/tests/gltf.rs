@@ -7,10 +7,10 @@ mod common;
 use common::*;
 use glam::{Quat, Vec3};
 use scene::{
-    load_gltf, load_level, load_scene_file, AlphaMode, Filter, LightKind, Material, Projection, Sampler,
-    TextureTransform, Wrap,
+    load_gltf, load_level, load_scene_file, AlphaMode, Filter, LightKind, Material, Projection, Reflection, Sampler,
+    Scene, TextureTransform, Wrap,
 };
-use serde_json::json;
+use serde_json::{json, Value};
 
 const S: f32 = std::f32::consts::FRAC_1_SQRT_2;
 
@@ -444,12 +444,35 @@ fn a_primitive_without_material_gets_the_specs_default_material() {
     let doc = single_primitive(&bin, json!({"attributes": {"POSITION": pos}}));
     let scene = load_gltf(&write_json(&dir, "d.gltf", &doc)).unwrap();
     let m = &scene.materials[scene.meshes[0].material];
-    // glTF 2.0 §3.9.6: base colour 1, no emission, opaque, single-sided.
+    // glTF 2.0 §3.9.6: base colour 1, metallic 1, roughness 1, no emission, opaque,
+    // single-sided.
     assert_eq!(m.base_color, [1.0; 4]);
+    assert_eq!(m.reflection, Reflection::MetallicRoughness { metallic: 1.0, roughness: 1.0, texture: None });
     assert_eq!((m.emissive, m.alpha_mode, m.double_sided), ([0.0; 3], AlphaMode::Opaque, false));
     assert!(m.base_color_texture.is_none() && m.emissive_texture.is_none());
-    // OBJ keeps its own default (0.8 grey, both sides).
+    // OBJ keeps its own default (0.8 grey, Lambertian, both sides).
     assert_eq!((Material::default().base_color, Material::default().double_sided), ([0.8, 0.8, 0.8, 1.0], true));
+    assert_eq!(Material::default().reflection, Reflection::Lambertian);
+}
+
+#[test]
+fn metallic_and_roughness_factors_default_to_one_and_must_lie_in_0_1() {
+    let dir = TempDir::new("metalrough");
+    let mut bin = Bin::default();
+    let pos = bin.vec3(&QUAD);
+    let with = |pbr: Value| {
+        let mut doc = single_primitive(&bin, json!({"attributes": {"POSITION": pos}, "material": 0}));
+        doc["materials"] = json!([{ "pbrMetallicRoughness": pbr }]);
+        load_gltf(&write_json(&dir, "m.gltf", &doc))
+    };
+    let reflection = |scene: Scene| scene.materials[0].reflection;
+    assert_eq!(reflection(with(json!({})).unwrap()), Reflection::GLTF_DEFAULT);
+    let stated = with(json!({"metallicFactor": 0.0, "roughnessFactor": 0.4})).unwrap();
+    assert_eq!(reflection(stated), Reflection::MetallicRoughness { metallic: 0.0, roughness: 0.4, texture: None });
+    for (key, value) in [("metallicFactor", 1.5), ("roughnessFactor", -0.1)] {
+        let err = with(json!({ key: value })).unwrap_err().to_string();
+        assert!(err.contains("m.gltf") && err.contains(key) && err.contains("between 0 and 1"), "{err}");
+    }
 }
 
 #[test]

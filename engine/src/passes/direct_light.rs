@@ -1,4 +1,5 @@
-//! Direct radiance from the headlamp and the punctual lights, evaluated per G-buffer texel.
+//! Direct radiance from the headlamp and the punctual lights, evaluated per G-buffer texel with
+//! glTF's metallic-roughness BRDF (shaders/brdf.wgsl), Lambertian where the texel says so.
 //! A detached headlamp is shadowed by its own depth map, `lamp.depth` (see lamp_view.rs).
 
 use super::fullscreen::{color_pass, fullscreen_pipeline};
@@ -44,6 +45,7 @@ impl DirectLightPass {
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
                     count: None,
                 },
+                texture_entry(5, fragment, false),
             ],
         });
         let pipeline = fullscreen_pipeline(
@@ -78,6 +80,7 @@ impl RenderPass for DirectLightPass {
             .read(GBUFFER_NORMAL)
             .read(GBUFFER_POSITION)
             .read(LAMP_DEPTH)
+            .read(GBUFFER_SPECULAR)
             .create_texture(DIRECT, TextureDesc::target(HDR_FORMAT));
     }
 
@@ -95,6 +98,7 @@ impl RenderPass for DirectLightPass {
                 texture(2, GBUFFER_POSITION),
                 texture(3, LAMP_DEPTH),
                 wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::Sampler(&self.shadow_sampler) },
+                texture(5, GBUFFER_SPECULAR),
             ],
         });
         let target = ctx.view(DIRECT);

@@ -15,6 +15,8 @@ pub const SHADER: &str = include_str!("../../../shaders/gbuffer.wgsl");
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 pub const POSITION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Half floats: F0 = 0.04 would be off by 2 % in 8 bits.
+pub const SPECULAR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 pub struct GBufferPass {
     pipelines: ScenePipelines,
@@ -24,7 +26,7 @@ impl GBufferPass {
     pub fn new(gpu: &Gpu, layouts: &CoreLayouts, scene: &GpuScene) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "gbuffer", SHADER, &[]);
-        let targets = [ALBEDO_FORMAT, HDR_FORMAT, POSITION_FORMAT, HDR_FORMAT];
+        let targets = [ALBEDO_FORMAT, HDR_FORMAT, POSITION_FORMAT, HDR_FORMAT, SPECULAR_FORMAT];
         let used = scene.variants_used();
         Self { pipelines: ScenePipelines::new(device, "gbuffer", &module, layouts, &targets, used) }
     }
@@ -177,11 +179,12 @@ impl RenderPass for GBufferPass {
             .create_texture(GBUFFER_NORMAL, TextureDesc::target(HDR_FORMAT))
             .create_texture(GBUFFER_POSITION, TextureDesc::target(POSITION_FORMAT))
             .create_texture(GBUFFER_EMISSIVE, TextureDesc::target(HDR_FORMAT))
+            .create_texture(GBUFFER_SPECULAR, TextureDesc::target(SPECULAR_FORMAT))
             .create_texture(GBUFFER_DEPTH, TextureDesc::target(DEPTH_FORMAT));
     }
 
     fn run(&mut self, ctx: &mut PassContext<'_>) {
-        let colors = [GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION, GBUFFER_EMISSIVE];
+        let colors = [GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION, GBUFFER_EMISSIVE, GBUFFER_SPECULAR];
         draw_scene(ctx, "gbuffer", &self.pipelines, &colors, GBUFFER_DEPTH);
     }
 }

@@ -19,7 +19,8 @@ pub use view_model::{ViewModelPass, ViewModelProbePass, VIEW_MODEL_IRRADIANCE_SI
 
 /// Names of the graph resources the core passes create; plugins read and write them by name.
 pub mod names {
-    /// Linear diffuse albedo ρ (Rgba16Float).
+    /// Linear diffuse albedo ρ = (1 − metallic)·base colour, what diffuse light (the GI's
+    /// included) reflects; the base colour itself for Lambertian surfaces (Rgba16Float).
     pub const GBUFFER_ALBEDO: &str = "gbuffer.albedo";
     /// World-space unit normal, facing the camera; w = 1 where there is geometry (Rgba16Float).
     pub const GBUFFER_NORMAL: &str = "gbuffer.normal";
@@ -27,12 +28,17 @@ pub mod names {
     pub const GBUFFER_POSITION: &str = "gbuffer.position";
     /// Emitted radiance (Rgba16Float).
     pub const GBUFFER_EMISSIVE: &str = "gbuffer.emissive";
+    /// The specular lobe of glTF's metallic-roughness BRDF: rgb = Fresnel reflectance at
+    /// normal incidence F0 = mix(0.04, base colour, metallic), a = perceptual roughness; all 0
+    /// for Lambertian surfaces (Rgba16Float). Only the direct light reads it: the GI is diffuse.
+    pub const GBUFFER_SPECULAR: &str = "gbuffer.specular";
     /// Reversed depth buffer (Depth32Float).
     pub const GBUFFER_DEPTH: &str = "gbuffer.depth";
     /// The lamp's view (a reflective shadow map), [`super::LAMP_MAP_SIZE`]² texels, rendered
     /// only while the headlamp is detached. While it is attached these hold nothing meaningful
     /// and the `gbuffer.*` textures above are the lamp's view (same formats and meanings, the
-    /// camera being the lamp). Linear diffuse albedo ρ (Rgba16Float).
+    /// camera being the lamp). Linear diffuse albedo ρ = (1 − metallic)·base colour
+    /// (Rgba16Float).
     pub const LAMP_ALBEDO: &str = "lamp.albedo";
     /// World-space unit normal facing the lamp; w = 1 where there is geometry (Rgba16Float).
     pub const LAMP_NORMAL: &str = "lamp.normal";

@@ -1,6 +1,7 @@
 //! "The Cellar", the first shipped level: a start room, a corridor, a red/green Cornell room,
 //! a blue/yellow room, a tall hall with pillars and a dais, and a storeroom with the way out.
-//! Lit by the headlamp and two dim lights; untextured.
+//! Lit by the headlamp and two dim lights. Textured: painted plaster, brick, concrete, wet
+//! flagstones that glint in the beam, varnished crates, steel and copper.
 
 use crate::geometry::Side;
 use crate::layout::*;
@@ -17,18 +18,18 @@ pub fn cellar() -> Level {
             min: [-3.0, 0.0],
             max: [3.0, 5.0],
             height: 3.0,
-            walls: [White, White, White, White],
-            floor: Concrete,
-            ceiling: White,
+            walls: [CellarPlaster, CellarPlaster, CellarPlaster, CellarPlaster],
+            floor: VarnishedWood,
+            ceiling: CellarPlaster,
         },
         Room {
             name: "corridor",
             min: [-1.0, -12.4],
             max: [1.0, -0.4],
             height: 3.0,
-            walls: [White, White, White, White],
-            floor: Concrete,
-            ceiling: White,
+            walls: [CellarPlaster, CellarPlaster, CellarPlaster, CellarPlaster],
+            floor: CellarConcrete,
+            ceiling: CellarPlaster,
         },
         // Entered from the east: red on the left (south), green on the right (north).
         Room {
@@ -36,9 +37,9 @@ pub fn cellar() -> Level {
             min: [-7.4, -10.0],
             max: [-1.4, -4.0],
             height: 3.0,
-            walls: [Green, White, Red, White],
-            floor: White,
-            ceiling: White,
+            walls: [GreenPlaster, CellarPlaster, RedPlaster, CellarPlaster],
+            floor: FloorTile,
+            ceiling: CellarPlaster,
         },
         // Entered from the west: a blue back wall meeting a yellow wall on the right.
         Room {
@@ -46,27 +47,27 @@ pub fn cellar() -> Level {
             min: [1.4, -12.4],
             max: [6.4, -4.0],
             height: 3.0,
-            walls: [White, Blue, Yellow, White],
-            floor: Concrete,
-            ceiling: White,
+            walls: [CellarPlaster, BluePlaster, YellowBrick, CellarPlaster],
+            floor: CellarConcrete,
+            ceiling: CellarPlaster,
         },
         Room {
             name: "hall",
             min: [-8.0, -26.8],
             max: [8.0, -12.8],
             height: 6.0,
-            walls: [White, White, White, White],
-            floor: Concrete,
-            ceiling: Concrete,
+            walls: [Brick, Brick, Brick, Brick],
+            floor: WetStone,
+            ceiling: CellarConcrete,
         },
         Room {
             name: "storeroom",
             min: [8.4, -22.0],
             max: [12.4, -18.0],
             height: 2.8,
-            walls: [Concrete, Concrete, Concrete, Concrete],
-            floor: Concrete,
-            ceiling: White,
+            walls: [CellarConcrete, CellarConcrete, CellarConcrete, CellarConcrete],
+            floor: CellarConcrete,
+            ceiling: CellarPlaster,
         },
     ];
 
@@ -83,30 +84,35 @@ pub fn cellar() -> Level {
     #[rustfmt::skip]
     let props = vec![
         // Start room: two crates in the corners away from the door.
-        prop("start_crate_ne", Wood, crate_at(2.4, 0.0, 0.6, 0.8)),
-        prop("start_crate_sw", Wood, crate_at(-2.4, 0.0, 4.4, 0.8)),
+        prop("start_crate_ne", VarnishedWood, crate_at(2.4, 0.0, 0.6, 0.8)),
+        prop("start_crate_sw", VarnishedWood, crate_at(-2.4, 0.0, 4.4, 0.8)),
         // Cornell room: the classic tall block (back left) and short block (front right).
-        prop("cornell_tall_block", White, cuboid([-6.6, 0.0, -6.2], [-5.4, 2.0, -5.0])),
-        prop("cornell_short_block", White, cuboid([-4.0, 0.0, -9.0], [-2.8, 1.0, -7.8])),
+        prop("cornell_tall_block", CellarPlaster, cuboid([-6.6, 0.0, -6.2], [-5.4, 2.0, -5.0])),
+        prop("cornell_short_block", CellarPlaster, cuboid([-4.0, 0.0, -9.0], [-2.8, 1.0, -7.8])),
         // Blue/yellow room: a stack of crates in the blue/yellow corner, one more by the west wall.
-        prop("blue_crate", Wood, crate_at(5.7, 0.0, -4.7, 1.0)),
-        prop("blue_crate_top", Wood, crate_at(5.7, 1.0, -4.7, 0.6)),
-        prop("blue_crate_west", Wood, crate_at(2.4, 0.0, -11.4, 0.8)),
+        prop("blue_crate", VarnishedWood, crate_at(5.7, 0.0, -4.7, 1.0)),
+        prop("blue_crate_top", VarnishedWood, crate_at(5.7, 1.0, -4.7, 0.6)),
+        prop("blue_crate_west", VarnishedWood, crate_at(2.4, 0.0, -11.4, 0.8)),
         // Hall: four full-height pillars, crates for cover, a dais with a step and a ramp.
-        prop("hall_pillar_sw", Concrete, cuboid([-4.3, 0.0, -16.8], [-3.7, 6.0, -16.2])),
-        prop("hall_pillar_se", Concrete, cuboid([3.7, 0.0, -16.8], [4.3, 6.0, -16.2])),
-        prop("hall_pillar_nw", Concrete, cuboid([-4.3, 0.0, -22.8], [-3.7, 6.0, -22.2])),
-        prop("hall_pillar_ne", Concrete, cuboid([3.7, 0.0, -22.8], [4.3, 6.0, -22.2])),
-        prop("hall_crate_stack", Wood, crate_at(-7.1, 0.0, -13.7, 1.0)),
-        prop("hall_crate_stack_top", Wood, crate_at(-7.0, 1.0, -13.6, 0.6)),
-        prop("hall_crate_mid", Wood, crate_at(-1.0, 0.0, -20.0, 1.0)),
-        prop("hall_crate_long", Wood, cuboid([1.0, 0.0, -18.2], [2.6, 0.8, -17.4])),
-        prop("hall_dais", Concrete, cuboid([-4.0, 0.0, -26.8], [4.0, 0.4, -25.0])),
-        prop("hall_dais_step", Concrete, cuboid([-4.0, 0.0, -25.0], [4.0, 0.2, -24.6])),
-        prop("hall_dais_ramp", Concrete, ramp([4.0, 0.0, -26.8], [6.4, 0.4, -25.0], Side::West)),
+        prop("hall_pillar_sw", CellarConcrete, cuboid([-4.3, 0.0, -16.8], [-3.7, 6.0, -16.2])),
+        prop("hall_pillar_se", CellarConcrete, cuboid([3.7, 0.0, -16.8], [4.3, 6.0, -16.2])),
+        prop("hall_pillar_nw", CellarConcrete, cuboid([-4.3, 0.0, -22.8], [-3.7, 6.0, -22.2])),
+        prop("hall_pillar_ne", CellarConcrete, cuboid([3.7, 0.0, -22.8], [4.3, 6.0, -22.2])),
+        prop("hall_crate_stack", VarnishedWood, crate_at(-7.1, 0.0, -13.7, 1.0)),
+        prop("hall_crate_stack_top", VarnishedWood, crate_at(-7.0, 1.0, -13.6, 0.6)),
+        prop("hall_crate_mid", VarnishedWood, crate_at(-1.0, 0.0, -20.0, 1.0)),
+        prop("hall_crate_long", VarnishedWood, cuboid([1.0, 0.0, -18.2], [2.6, 0.8, -17.4])),
+        prop("hall_dais", CellarConcrete, cuboid([-4.0, 0.0, -26.8], [4.0, 0.4, -25.0])),
+        prop("hall_dais_step", CellarConcrete, cuboid([-4.0, 0.0, -25.0], [4.0, 0.2, -24.6])),
+        prop("hall_dais_ramp", CellarConcrete, ramp([4.0, 0.0, -26.8], [6.4, 0.4, -25.0], Side::West)),
         // Storeroom: crates along the east wall.
-        prop("store_crate_big", Wood, crate_at(11.7, 0.0, -21.3, 1.0)),
-        prop("store_crate_small", Wood, crate_at(11.8, 0.0, -18.6, 0.8)),
+        prop("store_crate_big", VarnishedWood, crate_at(11.7, 0.0, -21.3, 1.0)),
+        prop("store_crate_small", VarnishedWood, crate_at(11.8, 0.0, -18.6, 0.8)),
+        // Metal that catches the lamp: a steel pipe along the hall's far wall, a copper pipe high
+        // on the corridor's west wall (above the doorways), the steel door of the way out.
+        prop("hall_pipe", Steel, cuboid([-8.0, 4.6, -26.8], [8.0, 4.8, -26.6])),
+        prop("corridor_pipe", Copper, cuboid([-1.0, 2.55, -12.4], [-0.88, 2.67, -0.4])),
+        prop("exit_door", Steel, cuboid([12.32, 0.0, -20.6], [12.4, 2.1, -19.4])),
     ];
 
     let spawn = Spawn { position: [0.0, 0.0, 3.8], yaw_deg: 0.0, pitch_deg: 0.0 };

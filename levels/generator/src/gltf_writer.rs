@@ -4,9 +4,10 @@
 //! NORMAL (VEC3 f32), TEXCOORD_0 (VEC2 f32) and u32 indices, each in its own bufferView. Every
 //! block is a multiple of 4 bytes long, so every bufferView starts 4-byte aligned.
 //!
-//! A textured material's base colour texture is an external PNG beside the scene file
-//! (`images[].uri`), sampled with repeat wrapping and trilinear filtering; a level without
-//! textured materials writes no `images`, `samplers` or `textures` at all.
+//! A textured material's base colour texture (and a wet floor's metallic-roughness texture) is
+//! an external PNG beside the scene file (`images[].uri`), sampled with repeat wrapping and
+//! trilinear filtering; a level without textured materials writes no `images`, `samplers` or
+//! `textures` at all. Every material states its metallic and roughness factors.
 
 use crate::geometry::MeshBuffers;
 use crate::layout::{Level, LightKind};
@@ -125,15 +126,20 @@ pub fn write(level: &Level, meshes: &[(Material, MeshBuffers)], bin_uri: &str) -
         let [r, g, bl] = material.albedo();
         let mut pbr = json!({
             "baseColorFactor": [r, g, bl, 1.0],
-            "metallicFactor": 0.0,
-            "roughnessFactor": 1.0,
+            "metallicFactor": material.metallic(),
+            "roughnessFactor": material.roughness(),
         });
-        if let Some((kind, _)) = material.texture() {
-            let index = textures.iter().position(|&t| t == kind).unwrap_or_else(|| {
+        let mut texture_index = |kind: TextureKind| {
+            textures.iter().position(|&t| t == kind).unwrap_or_else(|| {
                 textures.push(kind);
                 textures.len() - 1
-            });
-            pbr["baseColorTexture"] = json!({ "index": index });
+            })
+        };
+        if let Some((kind, _)) = material.texture() {
+            pbr["baseColorTexture"] = json!({ "index": texture_index(kind) });
+        }
+        if let Some(kind) = material.roughness_texture() {
+            pbr["metallicRoughnessTexture"] = json!({ "index": texture_index(kind) });
         }
         materials.push(json!({ "name": material.name(), "pbrMetallicRoughness": pbr }));
         gltf_meshes.push(json!({
@@ -335,10 +341,13 @@ mod tests {
                 let l2: f32 = (0..3).map(|c| f32_at(bin, noff + 12 * v + 4 * c).powi(2)).sum();
                 assert!((l2 - 1.0).abs() < 1e-5);
             }
+            // Every material states both factors (glTF's defaults, metallic 1, would make metals).
             let pbr = &materials[mi]["pbrMetallicRoughness"];
-            assert_eq!(pbr["metallicFactor"], 0.0);
-            assert_eq!(pbr["roughnessFactor"], 1.0);
-            assert!(pbr["baseColorFactor"].as_array().unwrap()[..3].iter().all(|c| c.as_f64().unwrap() <= 0.85));
+            let metallic = pbr["metallicFactor"].as_f64().unwrap();
+            assert!(metallic == 0.0 || metallic == 1.0);
+            assert!((0.0..=1.0).contains(&pbr["roughnessFactor"].as_f64().unwrap()));
+            let limit = if metallic == 0.0 { 0.85 } else { 1.0 };
+            assert!(pbr["baseColorFactor"].as_array().unwrap()[..3].iter().all(|c| c.as_f64().unwrap() <= limit));
         }
 
         // Nodes: every scene node exists; every mesh, the camera and every light is referenced.
@@ -370,7 +379,7 @@ mod tests {
     }
 
     /// Textured materials name their PNG through one texture each, all with the one repeating
-    /// sampler; untextured levels (the Cellar) carry no texture arrays at all.
+    /// sampler; untextured levels carry no texture arrays at all.
     #[test]
     fn textured_materials_reference_their_pngs() {
         for level in crate::all_levels() {
@@ -401,6 +410,11 @@ mod tests {
                 let index = written["pbrMetallicRoughness"]["baseColorTexture"]["index"].as_u64();
                 match m.texture() {
                     Some((kind, _)) => assert_eq!(out.textures[index.unwrap() as usize].0, kind.file_name(), "{m:?}"),
+                    None => assert_eq!(index, None, "{m:?}"),
+                }
+                let index = written["pbrMetallicRoughness"]["metallicRoughnessTexture"]["index"].as_u64();
+                match m.roughness_texture() {
+                    Some(kind) => assert_eq!(out.textures[index.unwrap() as usize].0, kind.file_name(), "{m:?}"),
                     None => assert_eq!(index, None, "{m:?}"),
                 }
             }

@@ -10,13 +10,16 @@ const SUB: usize = 5;
 
 fn wall_char(m: Material) -> char {
     match m {
-        Material::White | Material::Plaster => '#',
+        Material::White | Material::Plaster | Material::CellarPlaster => '#',
         Material::Red | Material::RedPlaster => 'R',
-        Material::Green | Material::GreenTile => 'G',
+        Material::Green | Material::GreenTile | Material::GreenPlaster => 'G',
         Material::Blue | Material::BluePlaster => 'B',
         Material::Yellow | Material::YellowBrick => 'Y',
-        Material::Concrete | Material::Stone | Material::FloorTile => '%',
-        Material::Wood | Material::Planks | Material::DarkPlanks => 'w',
+        Material::Concrete | Material::Stone | Material::FloorTile | Material::CellarConcrete | Material::WetStone => {
+            '%'
+        }
+        Material::Wood | Material::Planks | Material::DarkPlanks | Material::VarnishedWood => 'w',
+        Material::Steel | Material::Copper => 'm',
         Material::Brick => 'b',
     }
 }

@@ -1,5 +1,6 @@
-//! The shipped levels' materials: a diffuse albedo each (the glTF base colour factor), and for
-//! the textured ones a procedural base colour texture that multiplies it.
+//! The shipped levels' materials: a base colour each (the glTF base colour factor), for the
+//! textured ones a procedural base colour texture that multiplies it, and how they reflect the
+//! lamp (glTF's metallic and roughness factors, and a roughness texture for wet floors).
 
 use crate::textures::TextureKind;
 
@@ -31,10 +32,24 @@ pub enum Material {
     Brick,
     /// Dark wooden boards (the hall's ceiling, its balconies).
     DarkPlanks,
+    /// The cellar's off-white painted plaster, a satin paint.
+    CellarPlaster,
+    /// Green painted plaster (the cellar's red/green room).
+    GreenPlaster,
+    /// Cast concrete with pores and stains (the cellar's floors).
+    CellarConcrete,
+    /// Dark flagstones with puddles that glint in the beam (the cellar's hall floor).
+    WetStone,
+    /// Varnished wooden boards (the cellar's crates).
+    VarnishedWood,
+    /// Galvanised steel (pipes, the way out's door): a metal.
+    Steel,
+    /// Copper pipe: a coloured metal.
+    Copper,
 }
 
 impl Material {
-    pub const ALL: [Material; 17] = [
+    pub const ALL: [Material; 24] = [
         Material::White,
         Material::Red,
         Material::Green,
@@ -52,6 +67,13 @@ impl Material {
         Material::Stone,
         Material::Brick,
         Material::DarkPlanks,
+        Material::CellarPlaster,
+        Material::GreenPlaster,
+        Material::CellarConcrete,
+        Material::WetStone,
+        Material::VarnishedWood,
+        Material::Steel,
+        Material::Copper,
     ];
 
     pub fn name(self) -> &'static str {
@@ -73,11 +95,19 @@ impl Material {
             Material::Stone => "stone",
             Material::Brick => "brick",
             Material::DarkPlanks => "dark_planks",
+            Material::CellarPlaster => "cellar_plaster",
+            Material::GreenPlaster => "green_plaster",
+            Material::CellarConcrete => "cellar_concrete",
+            Material::WetStone => "wet_stone",
+            Material::VarnishedWood => "varnished_wood",
+            Material::Steel => "steel",
+            Material::Copper => "copper",
         }
     }
 
-    /// Linear diffuse albedo (the base colour factor). Kept at or below 0.85 so multi-bounce GI
-    /// stays well behaved; a texture (values at most 1) only darkens it.
+    /// Linear base colour factor: the diffuse albedo of a dielectric, kept at or below 0.85 so
+    /// multi-bounce GI stays well behaved (a texture, values at most 1, only darkens it); a
+    /// metal's specular colour (F0), which has no diffuse albedo at all.
     pub fn albedo(self) -> [f64; 3] {
         match self {
             Material::White => [0.8, 0.8, 0.8],
@@ -97,6 +127,46 @@ impl Material {
             Material::Stone => [0.58, 0.56, 0.52],
             Material::Brick => [0.66, 0.32, 0.2],
             Material::DarkPlanks => [0.34, 0.22, 0.13],
+            Material::CellarPlaster => [0.78, 0.76, 0.7],
+            Material::GreenPlaster => [0.07, 0.68, 0.1],
+            Material::CellarConcrete => [0.5, 0.49, 0.46],
+            Material::WetStone => [0.36, 0.35, 0.33],
+            Material::VarnishedWood => [0.6, 0.36, 0.16],
+            // Measured F0 of zinc-coated steel and of copper (linear).
+            Material::Steel => [0.62, 0.63, 0.64],
+            Material::Copper => [0.95, 0.64, 0.54],
+        }
+    }
+
+    /// glTF's metallicFactor: 1 for metals, 0 for everything else.
+    pub fn metallic(self) -> f64 {
+        match self {
+            Material::Steel | Material::Copper => 1.0,
+            _ => 0.0,
+        }
+    }
+
+    /// glTF's roughnessFactor (perceptual roughness; multiplied by [`Self::roughness_texture`]
+    /// where there is one). 1 is matte: the older levels' materials keep it.
+    pub fn roughness(self) -> f64 {
+        match self {
+            Material::CellarPlaster | Material::GreenPlaster => 0.6,
+            Material::CellarConcrete => 0.85,
+            Material::WetStone => 1.0,
+            Material::VarnishedWood => 0.35,
+            Material::Steel => 0.3,
+            Material::Copper => 0.25,
+            _ => 1.0,
+        }
+    }
+
+    /// A greyscale metallic-roughness texture (its green channel scales the roughness; its blue
+    /// channel, the same grey, scales a metallic factor of 0 and so changes nothing), sharing
+    /// the base colour texture's coordinates.
+    pub fn roughness_texture(self) -> Option<TextureKind> {
+        match self {
+            Material::WetStone => Some(TextureKind::Puddles),
+            _ => None,
         }
     }
 
@@ -115,7 +185,11 @@ impl Material {
             Material::GreenTile | Material::FloorTile => Some((TextureKind::Tiles, 1.0)),
             Material::YellowBrick | Material::Brick => Some((TextureKind::Brick, 1.0)),
             Material::Planks | Material::DarkPlanks => Some((TextureKind::Planks, 2.0)),
-            Material::Stone => Some((TextureKind::Stone, 2.0)),
+            Material::Stone | Material::WetStone => Some((TextureKind::Stone, 2.0)),
+            Material::CellarPlaster | Material::GreenPlaster => Some((TextureKind::Plaster, 2.0)),
+            Material::CellarConcrete => Some((TextureKind::Concrete, 2.0)),
+            Material::VarnishedWood => Some((TextureKind::Planks, 2.0)),
+            Material::Steel | Material::Copper => None,
         }
     }
 }
@@ -125,9 +199,21 @@ mod tests {
     use super::*;
 
     #[test]
-    fn albedos_are_matte_and_below_085() {
+    fn albedos_are_below_085_and_metals_are_below_1() {
         for m in Material::ALL {
-            assert!(m.albedo().iter().all(|&c| (0.0..=0.85).contains(&c)), "{m:?}");
+            let limit = if m.metallic() > 0.0 { 1.0 } else { 0.85 };
+            assert!(m.albedo().iter().all(|&c| (0.0..=limit).contains(&c)), "{m:?}");
+        }
+    }
+
+    #[test]
+    fn reflection_factors_are_in_gltf_ranges_and_roughness_maps_share_a_textured_uv() {
+        for m in Material::ALL {
+            assert!([0.0, 1.0].contains(&m.metallic()), "{m:?}");
+            assert!((0.0..=1.0).contains(&m.roughness()), "{m:?}");
+            if let Some(map) = m.roughness_texture() {
+                assert!(m.texture().is_some() && !map.is_base_colour(), "{m:?}");
+            }
         }
     }
 

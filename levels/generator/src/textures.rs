@@ -1,5 +1,6 @@
-//! Procedural base colour textures: plaster, tiles, brick, floorboards and flagstones, written
-//! as small greyscale PNGs beside a level's scene.
+//! Procedural base colour textures: plaster, tiles, brick, floorboards, flagstones and concrete,
+//! and one metallic-roughness texture (puddles), written as small greyscale PNGs beside a
+//! level's scene.
 //!
 //! They are detail maps: grey values near white with darker joints, grain and mottling, which a
 //! material's base colour factor tints (so one brick texture serves yellow and terracotta brick).
@@ -24,11 +25,29 @@ pub enum TextureKind {
     Planks,
     /// Staggered flagstones, two to a row, four rows (1 m x 0.5 m on a 2 m repeat).
     Stone,
+    /// Cast concrete: broad stains, pores and a few hairline cracks.
+    Concrete,
+    /// Not a colour: a linear roughness multiplier (glTF's metallicRoughnessTexture, read from
+    /// green; blue, the same grey, multiplies a metallic factor of 0). Dry stone 0.8, puddles
+    /// and damp joints down to 0.15, on [`TextureKind::Stone`]'s 2 m repeat.
+    Puddles,
 }
 
 impl TextureKind {
-    pub const ALL: [TextureKind; 5] =
-        [TextureKind::Plaster, TextureKind::Tiles, TextureKind::Brick, TextureKind::Planks, TextureKind::Stone];
+    pub const ALL: [TextureKind; 7] = [
+        TextureKind::Plaster,
+        TextureKind::Tiles,
+        TextureKind::Brick,
+        TextureKind::Planks,
+        TextureKind::Stone,
+        TextureKind::Concrete,
+        TextureKind::Puddles,
+    ];
+
+    /// Whether the texture is a base colour (sRGB detail map) rather than a roughness map.
+    pub fn is_base_colour(self) -> bool {
+        self != TextureKind::Puddles
+    }
 
     pub fn name(self) -> &'static str {
         match self {
@@ -37,6 +56,8 @@ impl TextureKind {
             TextureKind::Brick => "brick",
             TextureKind::Planks => "planks",
             TextureKind::Stone => "stone",
+            TextureKind::Concrete => "concrete",
+            TextureKind::Puddles => "puddles",
         }
     }
 
@@ -45,7 +66,8 @@ impl TextureKind {
         format!("{}.png", self.name())
     }
 
-    /// The texture's grey values (sRGB-encoded), row by row from the top left.
+    /// The texture's grey values (sRGB-encoded for base colours, linear for roughness), row by
+    /// row from the top left.
     pub fn pixels(self) -> Vec<u8> {
         let f: fn(u32, u32) -> f64 = match self {
             TextureKind::Plaster => plaster,
@@ -53,6 +75,8 @@ impl TextureKind {
             TextureKind::Brick => brick,
             TextureKind::Planks => planks,
             TextureKind::Stone => stone,
+            TextureKind::Concrete => concrete,
+            TextureKind::Puddles => puddles,
         };
         (0..SIZE * SIZE).map(|i| (f(i % SIZE, i / SIZE).clamp(0.0, 1.0) * 255.0).round() as u8).collect()
     }
@@ -194,6 +218,35 @@ fn stone(x: u32, y: u32) -> f64 {
     tone + bevel + 0.1 * fbm(fx, fy, 4, 5, 54 + row * 2 + col) + 0.03 * grain(x, y, 55)
 }
 
+fn concrete(x: u32, y: u32) -> f64 {
+    let (fx, fy) = (f64::from(x), f64::from(y));
+    let stains = 0.1 * fbm(fx, fy, 2, 4, 61);
+    // Pores: a few dark pixels where the fine hash is extreme.
+    let pore = if hash(i64::from(x), i64::from(y), 62) > 0.985 { -0.12 } else { 0.0 };
+    // Hairline cracks: where a low-frequency noise crosses one level, a thin dark line.
+    let crack = if (noise(fx, fy, 3, 3, 63) - 0.5).abs() < 0.006 { -0.1 } else { 0.0 };
+    0.88 + stains + pore + crack + 0.04 * fbm(fx, fy, 16, 2, 64) + 0.03 * grain(x, y, 65)
+}
+
+/// Roughness over [`stone`]'s flagstones: wet joints and puddles in the low spots.
+fn puddles(x: u32, y: u32) -> f64 {
+    const ROW: u32 = 64;
+    const LENGTH: u32 = 128;
+    const JOINT: u32 = 2;
+    let row = y / ROW;
+    let shift = if row % 2 == 1 { LENGTH / 2 } else { 0 };
+    let sx = (x + shift) % SIZE;
+    let (lx, ly) = (sx % LENGTH, y % ROW);
+    let (fx, fy) = (f64::from(x), f64::from(y));
+    // Water stands in the joints and their bevels.
+    if lx <= JOINT || ly <= JOINT {
+        return 0.2;
+    }
+    // Puddles: where broad noise is high, smoothly from dry (0.8) to standing water (0.15).
+    let wet = ((fbm(fx, fy, 3, 4, 71) - 0.08) / 0.12).clamp(0.0, 1.0);
+    0.8 - 0.65 * wet * wet * (3.0 - 2.0 * wet) + 0.03 * grain(x, y, 72)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -222,7 +275,7 @@ mod tests {
     /// Near white on average (the factor gives the colour) but not flat: each has detail.
     #[test]
     fn textures_are_bright_detail_maps() {
-        for kind in TextureKind::ALL {
+        for kind in TextureKind::ALL.into_iter().filter(|k| k.is_base_colour()) {
             let px = kind.pixels();
             let linear: Vec<f64> = px.iter().map(|&v| srgb_to_linear(f64::from(v) / 255.0)).collect();
             let mean = linear.iter().sum::<f64>() / linear.len() as f64;
@@ -230,6 +283,17 @@ mod tests {
             let (lo, hi) = (px.iter().min().unwrap(), px.iter().max().unwrap());
             assert!(hi - lo >= 12, "{kind:?}: flat ({lo}..{hi})");
         }
+    }
+
+    /// The puddles are a roughness map: mostly dry, some water (below 0.3), nothing smoother than
+    /// the renderer draws (0.089) or rougher than 1.
+    #[test]
+    fn puddles_are_a_mostly_dry_roughness_map() {
+        let px = TextureKind::Puddles.pixels();
+        let values: Vec<f64> = px.iter().map(|&v| f64::from(v) / 255.0).collect();
+        let wet = values.iter().filter(|&&v| v < 0.3).count() as f64 / values.len() as f64;
+        assert!((0.1..=0.45).contains(&wet), "wet fraction {wet}");
+        assert!(values.iter().all(|&v| (0.1..=0.9).contains(&v)));
     }
 
     /// The texture repeats without a seam: the jump across its left/right and top/bottom edges
