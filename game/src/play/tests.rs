@@ -210,9 +210,10 @@ fn cellar_copy(tag: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&parent);
     let dir = parent.join("cellar");
     std::fs::create_dir_all(&dir).unwrap();
+    // Every file: the scene's textures are PNGs beside it.
     for entry in std::fs::read_dir(crate::default_level()).unwrap() {
         let path = entry.unwrap().path();
-        if path.extension().is_some_and(|e| e == "toml" || e == "gltf" || e == "bin") {
+        if path.is_file() {
             std::fs::copy(&path, dir.join(path.file_name().unwrap())).unwrap();
         }
     }

@@ -99,7 +99,9 @@ impl SettingsScreen {
         let idle = self.waiting.is_none() && self.waiting_pad.is_none();
         let mut back = false;
         panel(ctx, "settings", |ui| {
-            ui.set_width(560.0);
+            // Wide enough for the six tabs in one row: a row wider than the panel grows it over its
+            // first frames, and the centred panel moves.
+            ui.set_width(640.0);
             // Larger than egui's tool-sized defaults: a game menu is read from further away.
             for (style, font) in ui.style_mut().text_styles.iter_mut() {
                 if matches!(style, egui::TextStyle::Body | egui::TextStyle::Button) {
