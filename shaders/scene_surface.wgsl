@@ -21,7 +21,8 @@ struct Material {
     // x: alpha cutoff (fs_masked only: MASK, and BLEND drawn as MASK at 0.5).
     alpha: vec4f,
     // x: metallic factor; y: roughness factor; z: 1 for glTF's metallic-roughness BRDF, 0 for
-    // Lambertian; w: 1 when there is a metallic-roughness texture.
+    // Lambertian; w: 1 when there is a metallic-roughness texture (unread: the shader samples
+    // the texture, or white, either way).
     reflection: vec4f,
 };
 
@@ -101,22 +102,17 @@ struct SurfaceReflection {
 
 // glTF's metallic-roughness split of a base colour, or a Lambertian surface.
 fn surface_reflection(in: VertexOut, base_color: vec3f) -> SurfaceReflection {
-    var out: SurfaceReflection;
-    if material.reflection.z < 0.5 {
-        out.diffuse = base_color;
-        out.specular = vec4f(0.0);
-        return out;
-    }
-    // Most materials have no texture: skip the sample (a uniform branch; lavapipe pays per sample).
-    var texel = vec4f(1.0);
-    if material.reflection.w > 0.5 {
-        let uv = texture_uv(in, material.metallic_roughness_uv_0, material.metallic_roughness_uv_1);
-        texel = textureSample(metallic_roughness_texture, metallic_roughness_sampler, uv);
-    }
+    // Sampled unconditionally (a material without the texture samples a 1×1 white one) and
+    // without branches: lavapipe runs a sample inside control flow per pixel, several times
+    // the cost of the whole G-buffer fragment.
+    let uv = texture_uv(in, material.metallic_roughness_uv_0, material.metallic_roughness_uv_1);
+    let texel = textureSample(metallic_roughness_texture, metallic_roughness_sampler, uv);
     let metallic = clamp(material.reflection.x * texel.b, 0.0, 1.0);
     let roughness = clamp(material.reflection.y * texel.g, MIN_ROUGHNESS, 1.0);
-    out.diffuse = (1.0 - metallic) * base_color;
-    out.specular = vec4f(mix(vec3f(BRDF_DIELECTRIC_F0), base_color, metallic), roughness);
+    let pbr = material.reflection.z > 0.5;
+    var out: SurfaceReflection;
+    out.diffuse = select(base_color, (1.0 - metallic) * base_color, pbr);
+    out.specular = select(vec4f(0.0), vec4f(mix(vec3f(BRDF_DIELECTRIC_F0), base_color, metallic), roughness), pbr);
     return out;
 }
 
