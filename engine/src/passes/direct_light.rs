@@ -56,14 +56,7 @@ impl DirectLightPass {
             HDR_FORMAT,
             None,
         );
-        // Reversed Z: the receiver is lit where its depth is at least the stored one.
-        let shadow_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("lamp shadow"),
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            compare: Some(wgpu::CompareFunction::GreaterEqual),
-            ..Default::default()
-        });
+        let shadow_sampler = super::lamp_view::lamp_shadow_sampler(device, "lamp shadow");
         Self { pipeline, inputs, shadow_sampler }
     }
 }

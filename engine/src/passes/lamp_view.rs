@@ -33,6 +33,18 @@ pub const LAMP_DEPTH_FORMAT: wgpu::TextureFormat = super::gbuffer::DEPTH_FORMAT;
 
 /// The descriptor of a `lamp.*` texture: fixed size, sampled by later passes, and copyable so
 /// tools and tests can read it back.
+/// The sampler passes read `lamp.depth` through as the detached headlamp's shadow map: a bilinear
+/// comparison that lights a receiver where its depth is at least the stored one (reversed Z).
+pub(super) fn lamp_shadow_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some(label),
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        compare: Some(wgpu::CompareFunction::GreaterEqual),
+        ..Default::default()
+    })
+}
+
 fn lamp_texture(format: wgpu::TextureFormat) -> TextureDesc {
     TextureDesc::target(format).fixed(LAMP_MAP_SIZE, LAMP_MAP_SIZE).usage(wgpu::TextureUsages::COPY_SRC)
 }

@@ -94,13 +94,7 @@ impl ViewModelPass {
             &[Some(VERTEX_LAYOUT), Some(INSTANCE_LAYOUT)],
             &[HDR_FORMAT],
         );
-        let shadow_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("view model lamp shadow"),
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            compare: Some(wgpu::CompareFunction::GreaterEqual),
-            ..Default::default()
-        });
+        let shadow_sampler = super::lamp_view::lamp_shadow_sampler(device, "view model lamp shadow");
         Self { pipeline, inputs, shadow_sampler }
     }
 }

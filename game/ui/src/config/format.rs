@@ -248,21 +248,8 @@ fn bindings(
     let mut listed: Vec<(Action, Vec<Binding>)> = Vec::new();
     for (key, value) in by_position(entries) {
         let fail = |problem: String| error(key, "bindings", problem);
-        let Some(action) = Action::from_name(key.get_ref()) else {
-            let names: Vec<&str> = Action::ALL.iter().map(|a| a.name()).collect();
-            return Err(fail(unknown(&names)));
-        };
-        let names: Vec<&str> = match value.get_ref() {
-            Value::String(name) => vec![name],
-            Value::Array(items) => items
-                .iter()
-                .map(|v| {
-                    v.as_str().ok_or_else(|| format!("expected names in quotes, like \"KeyW\", found {}", v.type_str()))
-                })
-                .collect::<Result<_, _>>()
-                .map_err(&fail)?,
-            _ => return Err(fail(list_expected(value))),
-        };
+        let (action, names) =
+            action_and_names(key, value, "names in quotes, like \"KeyW\"", list_expected(value)).map_err(&fail)?;
         if names.len() > SLOTS {
             return Err(fail(format!("at most {SLOTS} keys or buttons, found {}", names.len())));
         }
@@ -330,27 +317,12 @@ fn pad_bindings(
     let mut listed: Vec<(Action, Option<PadButton>)> = Vec::new();
     for (key, value) in by_position(entries) {
         let fail = |problem: String| error(key, "gamepad_bindings", problem);
-        let Some(action) = Action::from_name(key.get_ref()) else {
-            let names: Vec<&str> = Action::ALL.iter().map(|a| a.name()).collect();
-            return Err(fail(unknown(&names)));
-        };
-        let names: Vec<&str> = match value.get_ref() {
-            Value::String(name) => vec![name],
-            Value::Array(items) => items
-                .iter()
-                .map(|v| {
-                    v.as_str()
-                        .ok_or_else(|| format!("expected a name in quotes, like \"South\", found {}", v.type_str()))
-                })
-                .collect::<Result<_, _>>()
-                .map_err(&fail)?,
-            other => {
-                return Err(fail(format!(
-                    "expected a list of one gamepad button like [\"South\"] or [], found {}",
-                    other.type_str()
-                )))
-            }
-        };
+        let expected = format!(
+            "expected a list of one gamepad button like [\"South\"] or [], found {}",
+            value.get_ref().type_str()
+        );
+        let (action, names) =
+            action_and_names(key, value, "a name in quotes, like \"South\"", expected).map_err(&fail)?;
         let button = match names.as_slice() {
             [] => None,
             [name] => Some(pad_bindings::parse_button(name).map_err(|e| fail(e.to_string()))?),
@@ -413,6 +385,30 @@ fn number(value: &Value, range: &RangeInclusive<f32>) -> Result<f32, String> {
 
 fn boolean(value: &Value) -> Result<bool, String> {
     value.as_bool().ok_or_else(|| format!("expected true or false, found {}", value.type_str()))
+}
+
+/// A `[bindings]` or `[gamepad_bindings]` entry read: the action its key names and the names
+/// its value gives (one in quotes, or a list of them); else the problem, `not_a_list` when the
+/// value is neither.
+fn action_and_names<'v>(
+    key: &Spanned<String>,
+    value: &'v Spanned<Value>,
+    each: &str,
+    not_a_list: String,
+) -> Result<(Action, Vec<&'v str>), String> {
+    let Some(action) = Action::from_name(key.get_ref()) else {
+        let names: Vec<&str> = Action::ALL.iter().map(|a| a.name()).collect();
+        return Err(unknown(&names));
+    };
+    let names = match value.get_ref() {
+        Value::String(name) => vec![name.as_str()],
+        Value::Array(items) => items
+            .iter()
+            .map(|v| v.as_str().ok_or_else(|| format!("expected {each}, found {}", v.type_str())))
+            .collect::<Result<_, _>>()?,
+        _ => return Err(not_a_list),
+    };
+    Ok((action, names))
 }
 
 fn list_expected(value: &Spanned<Value>) -> String {
