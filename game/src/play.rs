@@ -580,6 +580,8 @@ impl WindowApp for GameWindow {
         }
         self.take_listing();
         self.poll_reload(dt, input.pressed(KeyCode::F5));
+        // A finished game's sting plays out behind its menu; a paused one holds every effect.
+        self.sound.set_paused(self.menus.is_open() && self.sim.state.outcome == Outcome::Playing);
         if self.menus.is_open() {
             self.ticks_this_frame = 0;
             return; // paused: no time passes in the world

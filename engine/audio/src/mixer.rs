@@ -67,6 +67,8 @@ pub(crate) trait Mixing {
     fn move_source(&mut self, source: u32, position: Vec3, muffle: f32);
     fn loop_ambience(&mut self, sound: Option<&Sound>, gain: f32);
     fn voices_playing(&self) -> usize;
+    fn set_paused(&mut self, paused: bool);
+    fn paused(&self) -> bool;
 }
 
 /// Why a mix could not be built: the backend's error (no device), or kira out of tracks.
@@ -92,6 +94,8 @@ pub(crate) struct Mixer<B: Backend> {
     voices: Vec<Voice>,
     listener: Listener,
     plays: u64,
+    /// The effects bus (every voice) is held, as while the game is paused.
+    paused: bool,
 }
 
 impl<B: Backend> Mixer<B> {
@@ -115,8 +119,16 @@ impl<B: Backend> Mixer<B> {
             let emitter = Emitter { position: Vec3::ZERO, muffle: 0.0, source: None };
             voices.push(Voice { track, filter, sound: None, emitter, gain: 0.0, started: 0 });
         }
-        let mut mixer =
-            Self { manager, effects, ambience, ambience_sound: None, voices, listener: Listener::default(), plays: 0 };
+        let mut mixer = Self {
+            manager,
+            effects,
+            ambience,
+            ambience_sound: None,
+            voices,
+            listener: Listener::default(),
+            plays: 0,
+            paused: false,
+        };
         mixer.set_volumes(volumes);
         Ok(mixer)
     }
@@ -188,6 +200,23 @@ impl<B: Backend> Mixing for Mixer<B> {
         }
     }
 
+    fn set_paused(&mut self, paused: bool) {
+        if paused == self.paused {
+            return;
+        }
+        self.paused = paused;
+        // Pausing a track fades out and holds every sound and sub-track (the voices) on it.
+        if paused {
+            self.effects.pause(CUT);
+        } else {
+            self.effects.resume(CUT);
+        }
+    }
+
+    fn paused(&self) -> bool {
+        self.paused
+    }
+
     fn loop_ambience(&mut self, sound: Option<&Sound>, gain: f32) {
         if let Some(mut old) = self.ambience_sound.take() {
             old.stop(CUT);
@@ -237,5 +266,31 @@ mod tests {
         assert!(mixer.voices.iter().filter(|v| v.emitter.source == Some(2)).all(|v| v.emitter.position.z == -3.0));
         mixer.loop_ambience(None, 0.0);
         assert!(mixer.ambience_sound.is_none());
+    }
+
+    /// The game's pause holds the effects where they are and lets them finish after.
+    #[test]
+    fn pausing_holds_the_effects_and_resuming_lets_them_finish() {
+        let settings = MockBackendSettings { sample_rate: 48_000 };
+        let Ok(mut mixer) = Mixer::<MockBackend>::new(settings, Volumes::default()) else { panic!("a mock mix") };
+        let blocks = |mixer: &mut Mixer<MockBackend>, n: usize| {
+            for _ in 0..n {
+                mixer.backend_mut().on_start_processing();
+                mixer.backend_mut().process();
+            }
+        };
+        // A 0.1 s beep; 400 blocks of 128 frames are over a second.
+        mixer.play_at(&beep(), 1.0, Emitter { position: -Vec3::Z, muffle: 0.0, source: None });
+        blocks(&mut mixer, 2);
+        assert_eq!(mixer.voices_playing(), 1);
+        mixer.set_paused(true);
+        blocks(&mut mixer, 400);
+        assert!(mixer.paused());
+        assert_eq!(mixer.effects.state(), kira::track::TrackPlaybackState::Paused);
+        assert_eq!(mixer.voices_playing(), 1, "held, not finished");
+        mixer.set_paused(false);
+        blocks(&mut mixer, 400);
+        assert!(!mixer.paused());
+        assert_eq!(mixer.voices_playing(), 0, "resumed, it played out");
     }
 }

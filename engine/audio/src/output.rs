@@ -102,6 +102,19 @@ impl AudioOutput {
         }
     }
 
+    /// Holds (true) or resumes (false) every effect — shots, steps, crawlers — where they are,
+    /// as the game's pause does; the ambience plays on.
+    pub fn set_paused(&mut self, paused: bool) {
+        if let Some(m) = &mut self.mix {
+            m.set_paused(paused);
+        }
+    }
+
+    /// Whether the effects are held (false when silent).
+    pub fn is_paused(&self) -> bool {
+        self.mix.as_ref().is_some_and(|m| m.paused())
+    }
+
     /// Sounds placed in the world still playing (0 when silent).
     pub fn voices_playing(&self) -> usize {
         self.mix.as_ref().map_or(0, |m| m.voices_playing())

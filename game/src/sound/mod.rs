@@ -92,6 +92,12 @@ impl Soundscape {
         self.output.set_volumes(volumes(config));
     }
 
+    /// While the game is paused the effects hold where they are (a crawler's shriek does not
+    /// run on behind the pause menu); the room tone plays on.
+    pub fn set_paused(&mut self, paused: bool) {
+        self.output.set_paused(paused);
+    }
+
     /// After a tick: its events, with the world they left.
     pub fn hear(&mut self, events: &[Event], state: &WorldState, world: &LevelWorld) {
         let Some(bank) = &self.bank else { return };
