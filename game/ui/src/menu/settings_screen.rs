@@ -61,6 +61,8 @@ pub(super) struct SettingsScreen {
     waiting_pad: Option<Action>,
     /// What the last rebinding did, above all when it took the key from another action.
     notice: Option<String>,
+    /// Gamepads connected as of this frame, said on the Gamepad tab.
+    pads: usize,
 }
 
 impl SettingsScreen {
@@ -74,6 +76,7 @@ impl SettingsScreen {
     /// Draws the screen and applies what the player does to `config`. Returns true to leave
     /// (Back, or Esc while no cell waits).
     pub fn show(&mut self, ctx: &egui::Context, config: &mut Config, input: &Input, esc: bool) -> bool {
+        self.pads = input.pad.connected();
         if let Some((action, slot)) = self.waiting {
             if esc {
                 self.waiting = None;
@@ -172,6 +175,7 @@ impl SettingsScreen {
             "Press a button on the gamepad for it; Start or Esc cancels."
         };
         ui.label(RichText::new(help).weak());
+        ui.label(pads_connected(self.pads));
         if let Some(notice) = &self.notice {
             ui.label(RichText::new(notice).color(NOTICE));
         }
@@ -339,6 +343,15 @@ fn audio(ui: &mut egui::Ui, config: &mut Config) {
 /// comes first (it tells left from right Shift and the keypad from the digits); egui's
 /// events add what the window loop gives to the UI alone: clicks over the menu, and keys
 /// egui consumes (Tab, or any key while a widget has keyboard focus).
+/// The Gamepad tab's line on what is plugged in.
+pub fn pads_connected(n: usize) -> String {
+    match n {
+        0 => "No gamepad connected: plug one in at any time.".to_owned(),
+        1 => "A gamepad is connected.".to_owned(),
+        n => format!("{n} gamepads are connected; they play together."),
+    }
+}
+
 fn pressed_binding(ctx: &egui::Context, input: &Input) -> Option<Binding> {
     let from_game = input
         .pressed_keys()

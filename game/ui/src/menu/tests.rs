@@ -2,7 +2,7 @@ use engine::egui::{self, Rect};
 use engine::gamepad::{menu_key, PadButton, PadEvent};
 use engine::input::{Input, KeyCode, MouseButton};
 
-use super::settings_screen::{SLIDER_WIDTH, UNBOUND, WAITING, WAITING_PAD};
+use super::settings_screen::{pads_connected, SLIDER_WIDTH, UNBOUND, WAITING, WAITING_PAD};
 use super::{MenuAction, Menus, Screen};
 use crate::bindings::{Action, Binding, KeyBindings};
 use crate::config::Config;
@@ -517,6 +517,12 @@ fn a_gamepad_cell_waits_for_a_pad_button() {
     let mut h = Harness::new();
     h.open_settings_tab("Gamepad");
     assert!(h.shows("RT") && h.shows("A (bottom)"), "{:?}", h.shown);
+    assert!(h.shows(&pads_connected(0)), "{:?}", h.shown);
+    let mut plugged = Input::default();
+    plugged.pad.apply(PadEvent::Connected(0));
+    h.pass_with(Vec::new(), &plugged);
+    h.pass_with(Vec::new(), &plugged);
+    assert!(h.shows(&pads_connected(1)), "the tab says a pad is plugged in: {:?}", h.shown);
     let fire = h.rect(Action::Fire.label());
     let cell = |h: &Harness| {
         h.shown
