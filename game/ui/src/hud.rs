@@ -171,7 +171,9 @@ fn ammo(ui: &mut egui::Ui, hud: &HudInfo) {
         caption(ui, "AMMO", CAPTION);
         let empty = hud.ammo_in_magazine == 0;
         let text = format!("{} / {}", hud.ammo_in_magazine, hud.ammo_reserve);
-        ui.label(RichText::new(text).monospace().size(26.0).color(if empty { RED } else { TEXT }));
+        // Never wrapped: in its narrow corner area egui broke the count onto two lines.
+        let count = RichText::new(text).monospace().size(26.0).color(if empty { RED } else { TEXT });
+        ui.add(egui::Label::new(count).extend());
         if hud.reloading {
             ui.label(RichText::new("Reloading…").size(14.0).color(AMBER));
         }
