@@ -55,7 +55,7 @@ pub fn world(s: &WorldState) -> u64 {
     let w = &s.weapon;
     h.bytes(&w.magazine.to_le_bytes());
     h.bytes(&w.reserve.to_le_bytes());
-    h.bytes(&[w.cooldown, w.reloading, w.flash]);
+    h.bytes(&[w.cooldown, w.reloading, w.flash, w.click]);
 
     h.bytes(&(s.enemies.len() as u32).to_le_bytes());
     for e in &s.enemies {

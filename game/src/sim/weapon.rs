@@ -43,6 +43,9 @@ pub struct Weapon {
     pub reloading: u8,
     /// Ticks left of the muzzle flash.
     pub flash: u8,
+    /// Ticks until a trigger held on an empty gun clicks again. Apart from `cooldown`, which
+    /// only a shot sets, so the gun in hand kicks at a shot and never at a click.
+    pub click: u8,
 }
 
 /// Where a shot hit: a wall (or floor, prop…) or an enemy.
@@ -56,13 +59,14 @@ pub struct Impact {
 
 impl Weapon {
     pub fn new() -> Self {
-        Self { magazine: MAGAZINE, reserve: START_RESERVE, cooldown: 0, reloading: 0, flash: 0 }
+        Self { magazine: MAGAZINE, reserve: START_RESERVE, cooldown: 0, reloading: 0, flash: 0, click: 0 }
     }
 
     /// Advances timers and handles the trigger and reload.
     pub fn step(&mut self, cmd: &TickCommand) -> Action {
         self.cooldown = self.cooldown.saturating_sub(1);
         self.flash = self.flash.saturating_sub(1);
+        self.click = self.click.saturating_sub(1);
         if self.reloading > 0 {
             self.reloading -= 1;
             if self.reloading == 0 {
@@ -81,7 +85,10 @@ impl Weapon {
         if cmd.held(buttons::FIRE) && self.cooldown == 0 {
             if self.magazine == 0 {
                 // Nothing to fire or load: a click, repeated while the trigger is held.
-                self.cooldown = DRY_INTERVAL;
+                if self.click > 0 {
+                    return Action::Nothing;
+                }
+                self.click = DRY_INTERVAL;
                 return Action::DryClick;
             }
             self.magazine -= 1;
@@ -163,6 +170,7 @@ mod tests {
         assert_eq!(clicks, vec![0, DRY_INTERVAL as usize, 2 * DRY_INTERVAL as usize]);
         assert!(actions.iter().all(|a| matches!(a, Action::DryClick | Action::Nothing)));
         assert_eq!(w.flash, 0, "a click lights nothing");
+        assert_eq!(w.cooldown, 0, "a click is no shot: the gun in hand does not kick");
     }
 
     #[test]
