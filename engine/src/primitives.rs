@@ -35,6 +35,22 @@ pub fn cuboid(half_extents: Vec3) -> (Vec<Vertex>, Vec<u32>) {
     (vertices, indices)
 }
 
+/// Boxes (centre, half extents) in one mesh: a shape built of blocks, drawn as one instance.
+pub fn boxes(parts: &[(Vec3, Vec3)]) -> (Vec<Vertex>, Vec<u32>) {
+    let mut vertices = Vec::with_capacity(24 * parts.len());
+    let mut indices = Vec::with_capacity(36 * parts.len());
+    for &(centre, half) in parts {
+        let (v, i) = cuboid(half);
+        let base = vertices.len() as u32;
+        vertices.extend(v.into_iter().map(|mut v| {
+            v.position = (Vec3::from(v.position) + centre).to_array();
+            v
+        }));
+        indices.extend(i.into_iter().map(|k| k + base));
+    }
+    (vertices, indices)
+}
+
 /// A sphere centred on the origin: `segments` around the axis (at least 3), `rings` from pole
 /// to pole (at least 2).
 pub fn uv_sphere(radius: f32, segments: u32, rings: u32) -> (Vec<Vertex>, Vec<u32>) {
@@ -206,6 +222,27 @@ mod tests {
         let volume = check("cuboid", &mesh, |_| Vec3::ZERO);
         assert_bounds("cuboid", &mesh, -h, h);
         assert_volume("cuboid", volume, 8.0 * h.x * h.y * h.z, 1e-5);
+    }
+
+    #[test]
+    fn boxes_are_cuboids_moved_to_their_centres() {
+        let (a, b) =
+            ((Vec3::new(1.0, 0.0, 0.0), Vec3::splat(0.5)), (Vec3::new(-2.0, 1.0, 0.0), Vec3::new(0.25, 0.5, 1.0)));
+        let mesh = boxes(&[a, b]);
+        assert_eq!((mesh.0.len(), mesh.1.len()), (48, 72));
+        // Each half is a closed box around its own centre.
+        let half = |k: usize| {
+            (
+                mesh.0[24 * k..24 * (k + 1)].to_vec(),
+                mesh.1[36 * k..36 * (k + 1)].iter().map(|i| i - 24 * k as u32).collect(),
+            )
+        };
+        for (k, (centre, h)) in [a, b].into_iter().enumerate() {
+            let part = half(k);
+            let volume = check("box", &part, |_| centre);
+            assert_bounds("box", &part, centre - h, centre + h);
+            assert_volume("box", volume, 8.0 * h.x * h.y * h.z, 1e-5);
+        }
     }
 
     #[test]

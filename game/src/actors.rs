@@ -38,12 +38,10 @@ const CROSS_GLOW: [f32; 3] = [0.3, 0.01, 0.01];
 
 /// A plus sign of two crossed plates, lying flat.
 fn cross() -> (Vec<engine::scene::Vertex>, Vec<u32>) {
-    let (mut vertices, mut indices) = primitives::cuboid(Vec3::new(0.11, CROSS_HALF_THICKNESS, 0.035));
-    let (v, i) = primitives::cuboid(Vec3::new(0.035, CROSS_HALF_THICKNESS, 0.11));
-    let base = vertices.len() as u32;
-    vertices.extend(v);
-    indices.extend(i.into_iter().map(|k| k + base));
-    (vertices, indices)
+    primitives::boxes(&[
+        (Vec3::ZERO, Vec3::new(0.11, CROSS_HALF_THICKNESS, 0.035)),
+        (Vec3::ZERO, Vec3::new(0.035, CROSS_HALF_THICKNESS, 0.11)),
+    ])
 }
 
 impl ActorMeshes {

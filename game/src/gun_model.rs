@@ -98,33 +98,17 @@ pub struct GunModel {
     flash: MeshId,
 }
 
-/// Boxes (centre, half extents) merged into one mesh.
-fn boxes(parts: &[(Vec3, Vec3)]) -> (Vec<Vertex>, Vec<u32>) {
-    let mut vertices = Vec::new();
-    let mut indices = Vec::new();
-    for &(centre, half) in parts {
-        let (v, i) = primitives::cuboid(half);
-        let base = vertices.len() as u32;
-        vertices.extend(v.into_iter().map(|mut v| {
-            v.position = (Vec3::from(v.position) + centre).to_array();
-            v
-        }));
-        indices.extend(i.into_iter().map(|k| k + base));
-    }
-    (vertices, indices)
-}
-
 impl GunModel {
     pub fn add_to(renderer: &mut Renderer, gpu: &Gpu) -> Self {
         let v = Vec3::new;
-        let slide = boxes(&[
+        let slide = primitives::boxes(&[
             (v(0.0, 0.03, -0.068), v(0.0135, 0.016, 0.097)),
             // The rear sight, a notch between two posts, and the front sight's post.
             (v(-0.0085, 0.05, 0.02), v(0.005, 0.004, 0.004)),
             (v(0.0085, 0.05, 0.02), v(0.005, 0.004, 0.004)),
             (v(0.0, 0.0495, -0.152), v(0.0025, 0.0035, 0.003)),
         ]);
-        let frame = boxes(&[
+        let frame = primitives::boxes(&[
             // Dust cover under the slide, from the grip to the muzzle.
             (v(0.0, 0.006, -0.08), v(0.012, 0.009, 0.08)),
             // Trigger guard: bottom bar and front bar; the trigger.
@@ -132,9 +116,10 @@ impl GunModel {
             (v(0.0, -0.016, -0.07), v(0.005, 0.014, 0.003)),
             (v(0.0, -0.012, -0.034), v(0.003, 0.01, 0.003)),
         ]);
-        let grip = boxes(&[(Vec3::ZERO, v(0.0145, 0.056, 0.024))]);
+        let grip = primitives::boxes(&[(Vec3::ZERO, v(0.0145, 0.056, 0.024))]);
         // The magazine inside the grip, its base plate just below it.
-        let magazine = boxes(&[(Vec3::ZERO, v(0.011, 0.052, 0.018)), (v(0.0, -0.055, 0.0), v(0.0135, 0.004, 0.021))]);
+        let magazine =
+            primitives::boxes(&[(Vec3::ZERO, v(0.011, 0.052, 0.018)), (v(0.0, -0.055, 0.0), v(0.0135, 0.004, 0.021))]);
         let (mut bore, bore_indices) = primitives::cylinder(0.0065, 0.004, 12);
         // Its axis from +y to the barrel's, −z, at the slide's front face.
         let turn = Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2);
@@ -142,7 +127,7 @@ impl GunModel {
             p.position = (turn * Vec3::from(p.position) + v(0.0, 0.03, -0.165)).to_array();
             p.normal = (turn * Vec3::from(p.normal)).to_array();
         }
-        let dots = boxes(&[
+        let dots = primitives::boxes(&[
             (v(0.0, 0.05, -0.1488), v(0.0013, 0.0013, 0.0003)),
             (v(-0.0085, 0.0495, 0.0158), v(0.0013, 0.0013, 0.0003)),
             (v(0.0085, 0.0495, 0.0158), v(0.0013, 0.0013, 0.0003)),
