@@ -23,28 +23,15 @@ impl DirectLightPass {
         let device = &gpu.device;
         let module = crate::shader::module(device, "direct light", SHADER, &[]);
         let fragment = wgpu::ShaderStages::FRAGMENT;
+        let [shadow_map, shadow_compare] = super::lamp_view::lamp_shadow_entries(3, fragment);
         let inputs = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("direct light inputs"),
             entries: &[
                 texture_entry(0, fragment, false),
                 texture_entry(1, fragment, false),
                 texture_entry(2, fragment, false),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 3,
-                    visibility: fragment,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Depth,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 4,
-                    visibility: fragment,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                    count: None,
-                },
+                shadow_map,
+                shadow_compare,
                 texture_entry(5, fragment, false),
             ],
         });

@@ -53,6 +53,7 @@ impl ViewModelPass {
         let device = &gpu.device;
         let module = crate::shader::module(device, "view model", SHADER, &[]);
         let fragment = wgpu::ShaderStages::FRAGMENT;
+        let [shadow_map, shadow_compare] = super::lamp_view::lamp_shadow_entries(1, fragment);
         let inputs = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("view model inputs"),
             entries: &[
@@ -66,22 +67,8 @@ impl ViewModelPass {
                     },
                     count: None,
                 },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: fragment,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Depth,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 2,
-                    visibility: fragment,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                    count: None,
-                },
+                shadow_map,
+                shadow_compare,
             ],
         });
         // Group 1 (scene_surface.wgsl's material) is not used by this pipeline.
