@@ -163,14 +163,21 @@ fn tiles(x: u32, y: u32) -> f64 {
     tone + bevel + 0.025 * fbm(fx, fy, 8, 3, 24) + 0.012 * grain(x, y, 25)
 }
 
+/// A running bond (bricks, flagstones): courses `course` pixels high of blocks `length` long,
+/// every other course shifted by half a block. The block's column and course, and the pixel's
+/// place within the block.
+fn running_bond(x: u32, y: u32, course: u32, length: u32) -> (u32, u32, u32, u32) {
+    let row = y / course;
+    let shift = if row % 2 == 1 { length / 2 } else { 0 };
+    let bx = (x + shift) % SIZE;
+    (bx / length, row, bx % length, y % course)
+}
+
 fn brick(x: u32, y: u32) -> f64 {
     const COURSE: u32 = 16;
     const LENGTH: u32 = 64;
     const MORTAR: u32 = 2;
-    let row = y / COURSE;
-    let shift = if row % 2 == 1 { LENGTH / 2 } else { 0 };
-    let bx = (x + shift) % SIZE;
-    let (col, lx, ly) = (bx / LENGTH, bx % LENGTH, y % COURSE);
+    let (col, row, lx, ly) = running_bond(x, y, COURSE, LENGTH);
     let (fx, fy) = (f64::from(x), f64::from(y));
     if ly < MORTAR || lx < MORTAR {
         return 0.58 + 0.06 * fbm(fx, fy, 32, 2, 31) + 0.05 * grain(x, y, 32);
@@ -201,20 +208,19 @@ fn planks(x: u32, y: u32) -> f64 {
     tone + edge + 0.12 * streaks + 0.025 * rings + 0.02 * grain(x, y, 46)
 }
 
+/// The flagstones' bond, shared by [`stone`] and the [`puddles`] lying in its joints.
+const FLAGSTONE_ROW: u32 = 64;
+const FLAGSTONE_LENGTH: u32 = 128;
+const FLAGSTONE_JOINT: u32 = 2;
+
 fn stone(x: u32, y: u32) -> f64 {
-    const ROW: u32 = 64;
-    const LENGTH: u32 = 128;
-    const JOINT: u32 = 2;
-    let row = y / ROW;
-    let shift = if row % 2 == 1 { LENGTH / 2 } else { 0 };
-    let sx = (x + shift) % SIZE;
-    let (col, lx, ly) = (sx / LENGTH, sx % LENGTH, y % ROW);
+    let (col, row, lx, ly) = running_bond(x, y, FLAGSTONE_ROW, FLAGSTONE_LENGTH);
     let (fx, fy) = (f64::from(x), f64::from(y));
-    if lx < JOINT || ly < JOINT {
+    if lx < FLAGSTONE_JOINT || ly < FLAGSTONE_JOINT {
         return 0.5 + 0.06 * fbm(fx, fy, 32, 2, 51) + 0.04 * grain(x, y, 52);
     }
     let tone = 0.86 + 0.12 * (hash(i64::from(col), i64::from(row), 53) - 0.5);
-    let bevel = if on_bevel(lx, ly, LENGTH, ROW, JOINT) { -0.06 } else { 0.0 };
+    let bevel = if on_bevel(lx, ly, FLAGSTONE_LENGTH, FLAGSTONE_ROW, FLAGSTONE_JOINT) { -0.06 } else { 0.0 };
     tone + bevel + 0.1 * fbm(fx, fy, 4, 5, 54 + row * 2 + col) + 0.03 * grain(x, y, 55)
 }
 
@@ -230,16 +236,10 @@ fn concrete(x: u32, y: u32) -> f64 {
 
 /// Roughness over [`stone`]'s flagstones: wet joints and puddles in the low spots.
 fn puddles(x: u32, y: u32) -> f64 {
-    const ROW: u32 = 64;
-    const LENGTH: u32 = 128;
-    const JOINT: u32 = 2;
-    let row = y / ROW;
-    let shift = if row % 2 == 1 { LENGTH / 2 } else { 0 };
-    let sx = (x + shift) % SIZE;
-    let (lx, ly) = (sx % LENGTH, y % ROW);
+    let (_, _, lx, ly) = running_bond(x, y, FLAGSTONE_ROW, FLAGSTONE_LENGTH);
     let (fx, fy) = (f64::from(x), f64::from(y));
     // Water stands in the joints and their bevels.
-    if lx <= JOINT || ly <= JOINT {
+    if lx <= FLAGSTONE_JOINT || ly <= FLAGSTONE_JOINT {
         return 0.2;
     }
     // Puddles: where broad noise is high, smoothly from dry (0.8) to standing water (0.15).
