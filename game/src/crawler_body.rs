@@ -98,8 +98,6 @@ pub const STRIKE_LIMB: usize = 3;
 const STEP_LIFT: f32 = 0.14;
 /// Below this speed (m/s) the stride shrinks towards nothing: shuffling, not striding.
 const FULL_STRIDE_SPEED: f32 = 0.6;
-/// One breath, in ticks (2.5 s at 60 ticks/s).
-const BREATH_TICKS: f32 = 150.0;
 /// Ticks the death fall takes.
 const FALL_TICKS: f32 = 20.0;
 
@@ -225,7 +223,10 @@ pub fn pose(prev: &Enemy, cur: &Enemy, t: f32, clock: f32, index: usize) -> Pose
     rear += 0.3 * flinch;
     shift += 0.12 * flinch;
 
-    let breath = (TAU * (clock + index as f32 * 37.0) / BREATH_TICKS).sin() * (1.0 - fallen);
+    // The chest heaves on the simulation's calm breathing beat, so a calm crawler is seen
+    // breathing as it is heard.
+    let beat = (clock + (index as u32 * enemy::BREATH_STAGGER) as f32) / enemy::BREATH_CALM as f32;
+    let breath = (TAU * beat).sin() * (1.0 - fallen);
     let bob = Vec3::Y * (0.025 * stride * (2.0 * phase).cos() + 0.008 * breath);
     let torso = Quat::from_rotation_x(rear);
     let place = |p: Vec3| PELVIS + torso * (p - PELVIS) + Vec3::Z * shift + bob;

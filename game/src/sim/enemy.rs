@@ -44,6 +44,9 @@ pub const GAIT: f32 = 1.2;
 /// Ticks between a crawler's breaths: slow while it wanders, quick while it hunts.
 pub const BREATH_CALM: u32 = 150;
 pub const BREATH_HUNTING: u32 = 70;
+/// Each crawler's breaths are offset by this many ticks times its index, so a pack does not
+/// breathe in unison.
+pub const BREATH_STAGGER: u32 = 37;
 
 /// A crawler's body.
 pub fn body_config() -> CharacterConfig {
@@ -154,7 +157,7 @@ impl Enemy {
             Mind::Patrol | Mind::Search => BREATH_CALM,
             Mind::Alert | Mind::Chase | Mind::Attack => BREATH_HUNTING,
         };
-        (tick + index as u32 * 37).is_multiple_of(period)
+        (tick + index as u32 * BREATH_STAGGER).is_multiple_of(period)
     }
 
     /// Eye height of a crawler, m above its feet.
