@@ -3,6 +3,8 @@
 
 use std::f32::consts::TAU;
 
+use crate::sim::Rng;
+
 /// Samples per second of every made sound.
 pub const RATE: u32 = 44_100;
 
@@ -16,20 +18,17 @@ pub fn blank(seconds: f32) -> Vec<f32> {
     vec![0.0; (seconds * RATE as f32).round() as usize]
 }
 
-/// White noise in −1..1 from a seed (xorshift64*): the same seed, the same noise.
-pub struct Noise(u64);
+/// White noise in −1..1 from a seed: the same seed, the same noise (the simulation's
+/// SplitMix64 generator, [`Rng`]).
+pub struct Noise(Rng);
 
 impl Noise {
     pub fn new(seed: u64) -> Self {
-        Self(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1)
+        Self(Rng::new(seed))
     }
 
     pub fn sample(&mut self) -> f32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let bits = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40;
-        bits as f32 / (1u64 << 23) as f32 - 1.0
+        self.0.next_f32() * 2.0 - 1.0
     }
 
     /// Uniform in `lo..hi`.
