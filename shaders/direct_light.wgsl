@@ -24,9 +24,9 @@ struct Surface {
     specular: vec4f,
 };
 
-// Reflected radiance towards the eye of `irradiance` arriving along unit direction l.
-fn reflected(s: Surface, l: vec3f, irradiance: vec3f) -> vec3f {
-    return brdf(s.n, s.v, l, s.rho, s.specular) * irradiance;
+// Reflected radiance towards the eye of a light's incident irradiance.
+fn reflected(s: Surface, light: Incident) -> vec3f {
+    return brdf(s.n, s.v, light.l, s.rho, s.specular) * light.e;
 }
 
 @vertex
@@ -51,16 +51,11 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
 
     // Σ f · I·cos/d² over the lights (f · E for directional ones), each light's irradiance from
     // lights.wgsl (shared with the view models) and its direction for the BRDF.
-    var radiance = vec3f(0.0);
-    if globals.lamp_pos.w > 0.5 {
-        let l = normalize(globals.lamp_pos.xyz - x);
-        radiance += reflected(s, l, headlamp_irradiance(lamp_depth, lamp_shadow, x, n));
-    }
-    // The camera flash sits at the eye: its light arrives along v.
-    radiance += reflected(s, v, flash_irradiance(x, n));
+    var radiance = reflected(s, headlamp_light(lamp_depth, lamp_shadow, x, n));
+    radiance += reflected(s, flash_light(x, n));
     let count = u32(globals.params.y);
     for (var i = 0u; i < count; i++) {
-        radiance += reflected(s, light_direction(lights[i], x), punctual(lights[i], x, n));
+        radiance += reflected(s, punctual(lights[i], x, n));
     }
     return vec4f(radiance, 1.0);
 }

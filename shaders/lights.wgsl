@@ -1,7 +1,14 @@
 // The direct light at a point, shared by the passes that light surfaces (direct_light.wgsl for
-// the G-buffer, view_model.wgsl for the view models): each function returns the irradiance-like
-// sum Σ I·cos/d² (and E of directional lights) at x with unit normal n; a Lambertian surface's
-// radiance is ρ/π times it. Needs common.wgsl.
+// the G-buffer, view_model.wgsl for the view models): each light's `Incident` at x with unit
+// normal n, its irradiance-like I·cos/d² (E for a directional light) and where it comes from; a
+// Lambertian surface's radiance is ρ/π times the sum. Needs common.wgsl.
+
+// Light arriving at a point: the unit direction l towards its source and the irradiance-like
+// e = I·cos/d² it brings (E for a directional light; 0 from a light that is off).
+struct Incident {
+    l: vec3f,
+    e: vec3f,
+};
 
 // Shadow bias, in lamp-map texel footprints at the receiver, applied by moving the receiver
 // towards the lamp. A lamp texel covers `footprint` metres across the ray at the receiver, and
@@ -15,19 +22,12 @@ const SHADOW_SLOPE_TEXELS: f32 = 2.5;
 // tan θ is capped (θ ≈ 84°): beyond it the cosine leaves almost no light to shadow.
 const SHADOW_MAX_SLOPE: f32 = 10.0;
 
-// Unit direction from x to a punctual light (towards where a directional light comes from).
-fn light_direction(light: Light, x: vec3f) -> vec3f {
-    if u32(light.direction_kind.w) == 2u {
-        return -light.direction_kind.xyz;
-    }
-    return normalize(light.position_range.xyz - x);
-}
-
-fn punctual(light: Light, x: vec3f, n: vec3f) -> vec3f {
+fn punctual(light: Light, x: vec3f, n: vec3f) -> Incident {
     let kind = u32(light.direction_kind.w);
     if kind == 2u {
         // Directional: irradiance E = intensity · cos.
-        return light.color.rgb * max(0.0, dot(n, -light.direction_kind.xyz));
+        let l = -light.direction_kind.xyz;
+        return Incident(l, light.color.rgb * max(0.0, dot(n, l)));
     }
     let to_light = light.position_range.xyz - x;
     let d2 = max(dot(to_light, to_light), 1e-8);
@@ -44,7 +44,7 @@ fn punctual(light: Light, x: vec3f, n: vec3f) -> vec3f {
         let cos_angle = dot(-l, light.direction_kind.xyz);
         intensity *= smoothstep(light.cone.y, light.cone.x, cos_angle);
     }
-    return intensity * max(0.0, dot(n, l)) / d2;
+    return Incident(l, intensity * max(0.0, dot(n, l)) / d2);
 }
 
 // Fraction of the detached headlamp that x (normal n, unit direction l to the lamp at
@@ -80,31 +80,32 @@ fn lamp_visibility(
     return lit / 9.0;
 }
 
-// The headlamp's Σ I·cos/d² at x: its intensity distribution, shadowed by `lamp.depth` while
-// it is detached (attached, it sits at the eye and sees everything the camera sees: no test).
-fn headlamp_irradiance(lamp_depth: texture_depth_2d, lamp_shadow: sampler_comparison, x: vec3f, n: vec3f) -> vec3f {
-    if globals.lamp_pos.w < 0.5 {
-        return vec3f(0.0);
-    }
+// The headlamp's light at x: its intensity distribution, shadowed by `lamp.depth` while it is
+// detached (attached, it sits at the eye and sees everything the camera sees: no test).
+fn headlamp_light(lamp_depth: texture_depth_2d, lamp_shadow: sampler_comparison, x: vec3f, n: vec3f) -> Incident {
     let to_lamp = globals.lamp_pos.xyz - x;
     let d2 = max(dot(to_lamp, to_lamp), 1e-8);
     let l = to_lamp * inverseSqrt(d2);
+    if globals.lamp_pos.w < 0.5 {
+        return Incident(l, vec3f(0.0));
+    }
     var lamp = lamp_intensity_towards(x) * max(0.0, dot(n, l)) / d2;
     if globals.params.z > 0.5 && any(lamp > vec3f(0.0)) {
         lamp *= lamp_visibility(lamp_depth, lamp_shadow, x, n, l, sqrt(d2));
     }
-    return lamp;
+    return Incident(l, lamp);
 }
 
-// The camera flash, isotropic at the eye. No shadow test: every point the eye sees has a
-// clear line to a light at the eye.
-fn flash_irradiance(x: vec3f, n: vec3f) -> vec3f {
-    if all(globals.camera_flash.rgb <= vec3f(0.0)) {
-        return vec3f(0.0);
-    }
+// The camera flash, isotropic at the eye: its light arrives along the way to the eye. No
+// shadow test: every point the eye sees has a clear line to a light at the eye.
+fn flash_light(x: vec3f, n: vec3f) -> Incident {
     let to_eye = globals.camera_pos.xyz - x;
     let d2 = max(dot(to_eye, to_eye), 1e-8);
-    return globals.camera_flash.rgb * max(0.0, dot(n, to_eye * inverseSqrt(d2))) / d2;
+    let l = to_eye * inverseSqrt(d2);
+    if all(globals.camera_flash.rgb <= vec3f(0.0)) {
+        return Incident(l, vec3f(0.0));
+    }
+    return Incident(l, globals.camera_flash.rgb * max(0.0, dot(n, l)) / d2);
 }
 
 // Every punctual light of the level (unshadowed).
@@ -112,7 +113,7 @@ fn punctual_irradiance(x: vec3f, n: vec3f) -> vec3f {
     var e = vec3f(0.0);
     let count = u32(globals.params.y);
     for (var i = 0u; i < count; i++) {
-        e += punctual(lights[i], x, n);
+        e += punctual(lights[i], x, n).e;
     }
     return e;
 }

@@ -36,7 +36,7 @@ fn fs_main(in: InstanceOut, @builtin(front_facing) front: bool) -> @location(0) 
         n = -n;
     }
     let x = in.world;
-    let e = headlamp_irradiance(lamp_depth, lamp_shadow, x, n) + flash_irradiance(x, n) + punctual_irradiance(x, n)
+    let e = headlamp_light(lamp_depth, lamp_shadow, x, n).e + flash_light(x, n).e + punctual_irradiance(x, n)
         + indirect_irradiance(n);
     return vec4f(in.base_color / PI * e + in.emissive, 1.0);
 }
