@@ -12,9 +12,11 @@ use engine::gpu::Gpu;
 use engine::headlamp::Headlamp;
 use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::renderer::Renderer;
-use engine::scene::{
-    HeadlampProfile, IntensityDistribution, LightKind, Material, Mesh, PunctualLight, Reflection, Scene, Vertex,
-};
+use engine::scene::{LightKind, Material, PunctualLight, Reflection, Scene};
+
+mod common;
+
+use common::{plane, uniform_lamp};
 
 const SIZE: (u32, u32) = (96, 64);
 const FOV_Y: f32 = 60.0 * std::f32::consts::PI / 180.0;
@@ -41,31 +43,6 @@ fn pbr(base: f32, metallic: f32, roughness: f32) -> Material {
         reflection: Reflection::MetallicRoughness { metallic, roughness, texture: None },
         ..Material::default()
     }
-}
-
-/// A 20 m square plane through `centre` with unit normal `normal`.
-fn plane(centre: Vec3, normal: Vec3, material: Material) -> Scene {
-    let n = normal.normalize();
-    let u = n.cross(if n.y.abs() > 0.9 { Vec3::X } else { Vec3::Y }).normalize() * 10.0;
-    let v = n.cross(u);
-    let corners = [centre - u - v, centre + u - v, centre + u + v, centre - u + v];
-    let vertices = corners.iter().map(|p| Vertex::new(p.to_array(), n.to_array(), [0.0; 2])).collect();
-    Scene {
-        meshes: vec![Mesh { name: "plane".into(), vertices, indices: vec![0, 1, 2, 0, 2, 3], material: 0 }],
-        materials: vec![material],
-        ..Scene::default()
-    }
-}
-
-fn uniform_lamp(power: f32, on: bool) -> Headlamp {
-    let mut lamp = Headlamp::new(HeadlampProfile {
-        power,
-        fov_y: FOV_Y,
-        color: [1.0; 3],
-        distribution: IntensityDistribution::Uniform,
-    });
-    lamp.on = on;
-    lamp
 }
 
 fn point_light(position: Vec3, intensity: f32) -> PunctualLight {
@@ -143,7 +120,7 @@ fn the_direct_light_is_the_gltf_metallic_roughness_brdf_pixel_by_pixel() {
         let material = pbr(base as f32, metallic as f32, roughness as f32);
         let scene = plane(centre.as_vec3(), normal.as_vec3(), material);
         let lights = vec![point_light(light.0.as_vec3(), light.1 as f32)];
-        let img = render(&gpu, &scene, "direct", uniform_lamp(1.5, true), lights);
+        let img = render(&gpu, &scene, "direct", uniform_lamp(1.5, FOV_Y), lights);
         let (mut worst, mut at) = (0.0_f64, (0, 0));
         for y in 0..SIZE.1 {
             for x in 0..SIZE.0 {
@@ -172,8 +149,8 @@ fn the_diffuse_part_is_exactly_one_minus_f0_times_rho_over_pi() {
         let n = DVec3::new(degrees.to_radians().sin(), 0.0, degrees.to_radians().cos());
         let centre = DVec3::new(0.0, 0.0, -d);
         let scene = |base: f32| plane(centre.as_vec3(), n.as_vec3(), pbr(base, 0.0, 0.5));
-        let lit = render(&gpu, &scene(rho as f32), "direct", uniform_lamp(power as f32, true), vec![]);
-        let specular = render(&gpu, &scene(0.0), "direct", uniform_lamp(power as f32, true), vec![]);
+        let lit = render(&gpu, &scene(rho as f32), "direct", uniform_lamp(power as f32, FOV_Y), vec![]);
+        let specular = render(&gpu, &scene(0.0), "direct", uniform_lamp(power as f32, FOV_Y), vec![]);
         for (x, y) in [(4u32, 32u32), (30, 10), (48, 32), (70, 50), (90, 32)] {
             let p = hit(x, y, centre, n);
             let l = -p.normalize();
@@ -199,7 +176,7 @@ fn a_rough_dielectric_stays_within_2_percent_of_lambertian() {
     let centre = DVec3::new(0.0, 0.0, -d);
     for rho in [0.3, 0.4, 0.45] {
         let scene = plane(centre.as_vec3(), n.as_vec3(), pbr(rho as f32, 0.0, 1.0));
-        let img = render(&gpu, &scene, "direct", uniform_lamp(power as f32, true), vec![]);
+        let img = render(&gpu, &scene, "direct", uniform_lamp(power as f32, FOV_Y), vec![]);
         let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
         for y in 0..SIZE.1 {
             for x in 0..SIZE.0 {
@@ -226,7 +203,7 @@ fn the_gbuffer_albedo_is_the_diffuse_part() {
     for (material, want) in
         [(pbr(0.8, 0.0, 0.4), 0.8), (pbr(0.8, 0.25, 0.4), 0.6), (pbr(0.8, 1.0, 0.4), 0.0), (lambertian, 0.8)]
     {
-        let img = render(&gpu, &plane(centre, Vec3::Z, material.clone()), "albedo", uniform_lamp(1.0, true), vec![]);
+        let img = render(&gpu, &plane(centre, Vec3::Z, material.clone()), "albedo", uniform_lamp(1.0, FOV_Y), vec![]);
         let got = img.get_pixel(SIZE.0 / 2, SIZE.1 / 2)[0];
         assert!((got - want).abs() < 1e-3, "{:?}: albedo {got}, expected {want}", material.reflection);
     }

@@ -13,7 +13,11 @@ use engine::headless::{read_texture, HeadlessTarget, ImageKind, RenderedImage};
 use engine::passes::{names, LAMP_MAP_SIZE};
 use engine::primitives;
 use engine::renderer::Renderer;
-use engine::scene::{HeadlampProfile, IntensityDistribution, Material, Mesh, Scene, Vertex};
+use engine::scene::Scene;
+
+mod common;
+
+use common::{uniform_lamp, wall};
 
 const SIZE: (u32, u32) = (96, 64);
 const FOV_Y: f32 = 60.0 * PI / 180.0;
@@ -24,26 +28,6 @@ const CUBE_RHO: [f32; 3] = [0.8, 0.4, 0.2];
 
 fn gpu() -> Gpu {
     Gpu::headless().unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// A 20 m wall facing +Z at z = `z`.
-fn wall(z: f32) -> Scene {
-    let corners = [[-10.0, -10.0, z], [10.0, -10.0, z], [10.0, 10.0, z], [-10.0, 10.0, z]];
-    let vertices = corners.iter().map(|&position| Vertex::new(position, [0.0, 0.0, 1.0], [0.0; 2])).collect();
-    Scene {
-        meshes: vec![Mesh { name: "wall".into(), vertices, indices: vec![0, 1, 2, 0, 2, 3], material: 0 }],
-        materials: vec![Material { base_color: [WALL_RHO, WALL_RHO, WALL_RHO, 1.0], ..Material::default() }],
-        ..Scene::default()
-    }
-}
-
-fn uniform_lamp() -> Headlamp {
-    Headlamp::new(HeadlampProfile {
-        power: POWER,
-        fov_y: FOV_Y,
-        color: [1.0; 3],
-        distribution: IntensityDistribution::Uniform,
-    })
 }
 
 fn view(camera: Camera, headlamp: Headlamp, instances: Vec<Instance>) -> ViewState {
@@ -117,12 +101,12 @@ fn lamp_radiance(rho: Vec3, n: Vec3, lamp: Vec3, x: Vec3) -> Vec3 {
 #[test]
 fn an_instance_in_front_of_the_attached_lamp_shows_its_colour_and_is_lit() {
     let gpu = gpu();
-    let (mut renderer, mesh) = renderer_with_cube(&gpu, &wall(-4.0));
+    let (mut renderer, mesh) = renderer_with_cube(&gpu, &wall(-4.0, WALL_RHO));
     let camera = Camera::perspective(Vec3::ZERO, Quat::IDENTITY, FOV_Y);
     // A 0.6 m cube 2 m ahead, a little off the axis: its front face is at z = -1.7.
     let transform = Mat4::from_scale_rotation_translation(Vec3::splat(0.6), Quat::IDENTITY, Vec3::new(0.2, 0.1, -2.0));
-    let with = view(camera, uniform_lamp(), vec![cube(mesh, transform)]);
-    let without = view(camera, uniform_lamp(), vec![]);
+    let with = view(camera, uniform_lamp(POWER, FOV_Y), vec![cube(mesh, transform)]);
+    let without = view(camera, uniform_lamp(POWER, FOV_Y), vec![]);
 
     let face = Vec3::new(0.25, 0.05, -1.7);
     let beside = Vec3::new(-1.5, 0.0, -4.0);
@@ -144,7 +128,7 @@ fn an_instance_in_front_of_the_attached_lamp_shows_its_colour_and_is_lit() {
     let final_with = render(&gpu, &mut renderer, &with, "final");
     assert_close(rgb(&final_with, on_face), rgb(&direct, on_face), 1e-3, "final radiance of the cube");
     let after = render(&gpu, &mut renderer, &without, "final");
-    let (mut fresh, _) = renderer_with_cube(&gpu, &wall(-4.0));
+    let (mut fresh, _) = renderer_with_cube(&gpu, &wall(-4.0, WALL_RHO));
     let never = render(&gpu, &mut fresh, &without, "final");
     assert!(after.as_raw() == never.as_raw(), "a frame without instances differs after one with them");
     assert!(rgb(&after, on_face).x < rgb(&final_with, on_face).x, "the wall behind is darker than the cube");
@@ -153,8 +137,8 @@ fn an_instance_in_front_of_the_attached_lamp_shows_its_colour_and_is_lit() {
 #[test]
 fn an_instance_between_a_detached_lamp_and_a_wall_casts_a_shadow_on_it() {
     let gpu = gpu();
-    let (mut renderer, mesh) = renderer_with_cube(&gpu, &wall(-4.0));
-    let mut lamp = uniform_lamp();
+    let (mut renderer, mesh) = renderer_with_cube(&gpu, &wall(-4.0, WALL_RHO));
+    let mut lamp = uniform_lamp(POWER, FOV_Y);
     lamp.detach_looking_at(Vec3::ZERO, Vec3::new(0.0, 0.0, -4.0));
     // A 0.6 m cube halfway: its umbra on the wall is about |x|, |y| < 0.52 (its back face).
     let transform = Mat4::from_scale_rotation_translation(Vec3::splat(0.6), Quat::IDENTITY, Vec3::new(0.0, 0.0, -2.0));
@@ -185,9 +169,9 @@ fn an_instance_between_a_detached_lamp_and_a_wall_casts_a_shadow_on_it() {
 #[test]
 fn an_emissive_instance_shows_its_emission() {
     let gpu = gpu();
-    let (mut renderer, mesh) = renderer_with_cube(&gpu, &wall(-4.0));
+    let (mut renderer, mesh) = renderer_with_cube(&gpu, &wall(-4.0, WALL_RHO));
     let camera = Camera::perspective(Vec3::ZERO, Quat::IDENTITY, FOV_Y);
-    let mut lamp = uniform_lamp();
+    let mut lamp = uniform_lamp(POWER, FOV_Y);
     lamp.on = false;
     let glow = [2.0, 1.0, 0.25];
     let instance = Instance {
@@ -205,7 +189,7 @@ fn an_emissive_instance_shows_its_emission() {
 #[test]
 fn instance_normals_follow_the_inverse_transpose_and_face_out_when_mirrored() {
     let gpu = gpu();
-    let (mut renderer, mesh) = renderer_with_cube(&gpu, &wall(-30.0));
+    let (mut renderer, mesh) = renderer_with_cube(&gpu, &wall(-30.0, WALL_RHO));
     // Rotated 45° about Z then stretched along X: the rotated +X face is no longer
     // perpendicular to M·(1, 0, 0); its normal is M⁻ᵀ·(1, 0, 0).
     let m = Mat4::from_scale(Vec3::new(2.0, 1.0, 1.0)) * Mat4::from_rotation_z(PI / 4.0);
@@ -215,14 +199,16 @@ fn instance_normals_follow_the_inverse_transpose_and_face_out_when_mirrored() {
     let naive = transform.transform_vector3(Vec3::X).normalize();
     assert!(want.dot(naive) < 0.9, "the test needs a transform that tells them apart");
     let camera = Camera::look_at(face_centre + want * 2.0, face_centre, FOV_Y);
-    let normals = render(&gpu, &mut renderer, &view(camera, uniform_lamp(), vec![cube(mesh, transform)]), "normal");
+    let normals =
+        render(&gpu, &mut renderer, &view(camera, uniform_lamp(POWER, FOV_Y), vec![cube(mesh, transform)]), "normal");
     let got = rgb(&normals, pixel(&camera, face_centre));
     assert!((got - want).length() < 2e-3, "normal of the stretched face: got {got}, expected {want}");
 
     // Mirrored (det < 0): the face towards the camera still has its normal towards it.
     let mirrored = Mat4::from_translation(Vec3::new(0.0, 0.0, -3.0)) * Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
     let camera = Camera::perspective(Vec3::ZERO, Quat::IDENTITY, FOV_Y);
-    let normals = render(&gpu, &mut renderer, &view(camera, uniform_lamp(), vec![cube(mesh, mirrored)]), "normal");
+    let normals =
+        render(&gpu, &mut renderer, &view(camera, uniform_lamp(POWER, FOV_Y), vec![cube(mesh, mirrored)]), "normal");
     let got = rgb(&normals, (SIZE.0 / 2, SIZE.1 / 2));
     assert!((got - Vec3::Z).length() < 2e-3, "mirrored cube's front face: normal {got}, expected +Z");
 }
@@ -230,7 +216,7 @@ fn instance_normals_follow_the_inverse_transpose_and_face_out_when_mirrored() {
 #[test]
 fn many_instances_of_several_meshes_grow_the_buffer_and_unknown_meshes_are_skipped() {
     let gpu = gpu();
-    let (mut renderer, cube_mesh) = renderer_with_cube(&gpu, &wall(-6.0));
+    let (mut renderer, cube_mesh) = renderer_with_cube(&gpu, &wall(-6.0, WALL_RHO));
     let (vertices, indices) = primitives::uv_sphere(0.3, 12, 6);
     let sphere = renderer.add_mesh(&gpu, &vertices, &indices);
     let camera = Camera::perspective(Vec3::ZERO, Quat::IDENTITY, FOV_Y);
@@ -244,13 +230,13 @@ fn many_instances_of_several_meshes_grow_the_buffer_and_unknown_meshes_are_skipp
             instances.push(Instance { mesh, transform, base_color: [0.9, 0.1, 0.1], emissive: [0.0; 3] });
         }
     }
-    let grid = view(camera, uniform_lamp(), instances.clone());
+    let grid = view(camera, uniform_lamp(POWER, FOV_Y), instances.clone());
     let albedo = render(&gpu, &mut renderer, &grid, "albedo");
     let red = albedo.pixels().filter(|p| p[0] > 0.8 && p[1] < 0.2).count();
     println!("{red} of {} pixels show the grid", SIZE.0 * SIZE.1);
     assert!(red > (SIZE.0 * SIZE.1 / 6) as usize, "only {red} pixels show the grid");
     // A mesh id the renderer never handed out draws nothing (and does not panic).
     instances.push(Instance { mesh: MeshId(99), ..instances[0] });
-    let with_unknown = render(&gpu, &mut renderer, &view(camera, uniform_lamp(), instances), "albedo");
+    let with_unknown = render(&gpu, &mut renderer, &view(camera, uniform_lamp(POWER, FOV_Y), instances), "albedo");
     assert!(albedo.as_raw() == with_unknown.as_raw(), "an unknown mesh changed the frame");
 }

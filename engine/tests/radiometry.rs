@@ -10,33 +10,14 @@ use engine::gpu::Gpu;
 use engine::headlamp::Headlamp;
 use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::renderer::Renderer;
-use engine::scene::{HeadlampProfile, IntensityDistribution, Material, Mesh, Scene, Vertex};
+use engine::scene::Scene;
+
+mod common;
+
+use common::{grey, plane, uniform_lamp};
 
 const SIZE: (u32, u32) = (96, 64);
 const FOV_Y: f32 = 60.0 * PI / 180.0;
-
-/// A 20 m square plane through `centre` with normal `normal` and albedo `rho`.
-fn plane(centre: Vec3, normal: Vec3, rho: f32) -> Scene {
-    let n = normal.normalize();
-    let u = n.cross(if n.y.abs() > 0.9 { Vec3::X } else { Vec3::Y }).normalize() * 10.0;
-    let v = n.cross(u);
-    let corners = [centre - u - v, centre + u - v, centre + u + v, centre - u + v];
-    let vertices = corners.iter().map(|p| Vertex::new(p.to_array(), n.to_array(), [0.0; 2])).collect();
-    Scene {
-        meshes: vec![Mesh { name: "plane".into(), vertices, indices: vec![0, 1, 2, 0, 2, 3], material: 0 }],
-        materials: vec![Material { base_color: [rho, rho, rho, 1.0], ..Material::default() }],
-        ..Scene::default()
-    }
-}
-
-fn uniform_lamp(power: f32) -> Headlamp {
-    Headlamp::new(HeadlampProfile {
-        power,
-        fov_y: FOV_Y,
-        color: [1.0; 3],
-        distribution: IntensityDistribution::Uniform,
-    })
-}
 
 /// Linear direct radiance seen from the origin looking down -Z.
 fn render_direct(scene: &Scene, lamp: Headlamp) -> image::Rgba32FImage {
@@ -95,7 +76,7 @@ fn assert_close(got: f32, want: f32, what: &str) {
 #[test]
 fn facing_plane_radiance_is_rho_over_pi_d_squared() {
     for (d, rho, power) in [(2.0_f32, 0.5_f32, 1.0_f32), (5.0, 0.8, 3.0)] {
-        let img = render_direct(&plane(Vec3::new(0.0, 0.0, -d), Vec3::Z, rho), uniform_lamp(power));
+        let img = render_direct(&plane(Vec3::new(0.0, 0.0, -d), Vec3::Z, grey(rho)), uniform_lamp(power, FOV_Y));
         // The 2×2 centre texels are half a pixel off-axis: account for cos³ of that angle.
         let texel_angle = ((FOV_Y * 0.5).tan() / (SIZE.1 as f32 / 2.0) * 0.5 * 2f32.sqrt()).atan();
         let want = rho * power / (PI * d * d) * texel_angle.cos().powi(3);
@@ -106,7 +87,7 @@ fn facing_plane_radiance_is_rho_over_pi_d_squared() {
 #[test]
 fn radiance_falls_off_as_cos_cubed_across_a_facing_plane() {
     let (d, rho) = (3.0, 0.6);
-    let img = render_direct(&plane(Vec3::new(0.0, 0.0, -d), Vec3::Z, rho), uniform_lamp(1.0));
+    let img = render_direct(&plane(Vec3::new(0.0, 0.0, -d), Vec3::Z, grey(rho)), uniform_lamp(1.0, FOV_Y));
     for px in [4u32, 20, 70, 90] {
         let y = SIZE.1 / 2;
         let cos = pixel_cos(px, y);
@@ -121,7 +102,7 @@ fn tilted_plane_radiance_follows_the_cosine() {
     let (d, rho) = (2.5, 0.7);
     for degrees in [30.0_f32, 60.0] {
         let normal = Quat::from_rotation_y(degrees.to_radians()) * Vec3::Z;
-        let img = render_direct(&plane(Vec3::new(0.0, 0.0, -d), normal, rho), uniform_lamp(1.0));
+        let img = render_direct(&plane(Vec3::new(0.0, 0.0, -d), normal, grey(rho)), uniform_lamp(1.0, FOV_Y));
         // On the axis the lamp direction is +Z: n·l = cos(tilt), distance d.
         let want_axis = rho / (PI * d * d) * degrees.to_radians().cos();
         // The 2×2 centre average straddles the axis symmetrically in x, so first-order terms
@@ -132,16 +113,16 @@ fn tilted_plane_radiance_follows_the_cosine() {
 
 #[test]
 fn lamp_off_gives_black_and_outside_the_frustum_gets_nothing() {
-    let mut lamp = uniform_lamp(1.0);
+    let mut lamp = uniform_lamp(1.0, FOV_Y);
     lamp.on = false;
-    let img = render_direct(&plane(Vec3::new(0.0, 0.0, -2.0), Vec3::Z, 0.5), lamp);
+    let img = render_direct(&plane(Vec3::new(0.0, 0.0, -2.0), Vec3::Z, grey(0.5)), lamp);
     assert!(img.pixels().all(|p| p[0] == 0.0));
 
     // A detached lamp pointing away (+Z) lights nothing in front of the camera.
-    let mut lamp = uniform_lamp(1.0);
+    let mut lamp = uniform_lamp(1.0, FOV_Y);
     lamp.attached = false;
     lamp.rotation = Quat::from_rotation_y(PI);
-    let img = render_direct(&plane(Vec3::new(0.0, 0.0, -2.0), Vec3::Z, 0.5), lamp);
+    let img = render_direct(&plane(Vec3::new(0.0, 0.0, -2.0), Vec3::Z, grey(0.5)), lamp);
     assert!(img.pixels().all(|p| p[0] == 0.0));
 }
 
@@ -153,9 +134,9 @@ fn the_camera_flash_adds_rho_over_pi_i_cos_over_d_squared() {
     for (d, degrees) in [(2.5_f32, 0.0_f32), (4.0, 60.0)] {
         let rho = 0.6;
         let normal = Quat::from_rotation_y(degrees.to_radians()) * Vec3::Z;
-        let scene = plane(Vec3::new(0.0, 0.0, -d), normal, rho);
-        let without = render_direct(&scene, uniform_lamp(1.0));
-        let with = render_direct_with_flash(&scene, uniform_lamp(1.0), flash);
+        let scene = plane(Vec3::new(0.0, 0.0, -d), normal, grey(rho));
+        let without = render_direct(&scene, uniform_lamp(1.0, FOV_Y));
+        let with = render_direct_with_flash(&scene, uniform_lamp(1.0, FOV_Y), flash);
         // Facing: n·l = cos and d = d0/cos off the axis (cos³); tilted: the 2×2 mean is the
         // on-axis value to within the 1 % bound (see tilted_plane_radiance_follows_the_cosine).
         let off_axis = if degrees == 0.0 { texel_angle.cos().powi(3) } else { 1.0 };
@@ -167,12 +148,12 @@ fn the_camera_flash_adds_rho_over_pi_i_cos_over_d_squared() {
     }
     // The flash alone, with the lamp off or put down facing away: the same light, no shadow
     // test (a detached lamp's shadow map says nothing about a light at the eye).
-    let scene = plane(Vec3::new(0.0, 0.0, -2.0), Vec3::Z, 0.5);
+    let scene = plane(Vec3::new(0.0, 0.0, -2.0), Vec3::Z, grey(0.5));
     let want = 0.5 / PI * flash[0] / 4.0 * texel_angle.cos().powi(3);
-    let mut off = uniform_lamp(1.0);
+    let mut off = uniform_lamp(1.0, FOV_Y);
     off.on = false;
     assert_close(centre(&render_direct_with_flash(&scene, off, flash)), want, "flash with the lamp off");
-    let mut away = uniform_lamp(1.0);
+    let mut away = uniform_lamp(1.0, FOV_Y);
     away.attached = false;
     away.rotation = Quat::from_rotation_y(PI);
     assert_close(centre(&render_direct_with_flash(&scene, away, flash)), want, "flash with the lamp put down");
@@ -181,9 +162,9 @@ fn the_camera_flash_adds_rho_over_pi_i_cos_over_d_squared() {
 #[test]
 fn the_camera_flash_falls_off_as_cos_cubed_and_zero_changes_nothing() {
     let (d, rho, intensity) = (3.0, 0.6, 2.0);
-    let mut lamp = uniform_lamp(1.0);
+    let mut lamp = uniform_lamp(1.0, FOV_Y);
     lamp.on = false;
-    let scene = plane(Vec3::new(0.0, 0.0, -d), Vec3::Z, rho);
+    let scene = plane(Vec3::new(0.0, 0.0, -d), Vec3::Z, grey(rho));
     let img = render_direct_with_flash(&scene, lamp.clone(), [intensity; 3]);
     for px in [4u32, 20, 70, 90] {
         let y = SIZE.1 / 2;
@@ -191,7 +172,7 @@ fn the_camera_flash_falls_off_as_cos_cubed_and_zero_changes_nothing() {
         let want = rho * intensity / (PI * d * d) * cos.powi(3);
         assert_close(img.get_pixel(px, y)[0], want, &format!("pixel x={px}"));
     }
-    let lit = uniform_lamp(1.0);
+    let lit = uniform_lamp(1.0, FOV_Y);
     let zero = render_direct_with_flash(&scene, lit.clone(), [0.0; 3]);
     assert!(zero.as_raw() == render_direct(&scene, lit).as_raw(), "a zero flash must change nothing");
 }

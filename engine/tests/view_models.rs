@@ -9,11 +9,14 @@ use engine::camera::Camera;
 use engine::frame::{Instance, MeshId, ViewState};
 use engine::glam::{Mat4, Quat, Vec3};
 use engine::gpu::Gpu;
-use engine::headlamp::Headlamp;
 use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::primitives;
 use engine::renderer::Renderer;
-use engine::scene::{HeadlampProfile, IntensityDistribution, Material, Mesh, Scene, Vertex};
+use engine::scene::Scene;
+
+mod common;
+
+use common::{uniform_lamp, wall};
 
 const SIZE: (u32, u32) = (96, 64);
 const FOV_Y: f32 = 60.0 * PI / 180.0;
@@ -24,31 +27,11 @@ const HELD_RHO: [f32; 3] = [0.3, 0.2, 0.1];
 /// How far in front of the camera the view model's front face is, m.
 const HELD_AT: f32 = 0.5;
 
-/// A 20 m wall facing +Z at z = `z`.
-fn wall(z: f32) -> Scene {
-    let corners = [[-10.0, -10.0, z], [10.0, -10.0, z], [10.0, 10.0, z], [-10.0, 10.0, z]];
-    let vertices = corners.iter().map(|&position| Vertex::new(position, [0.0, 0.0, 1.0], [0.0; 2])).collect();
-    Scene {
-        meshes: vec![Mesh { name: "wall".into(), vertices, indices: vec![0, 1, 2, 0, 2, 3], material: 0 }],
-        materials: vec![Material { base_color: [WALL_RHO, WALL_RHO, WALL_RHO, 1.0], ..Material::default() }],
-        ..Scene::default()
-    }
-}
-
-fn lamp() -> Headlamp {
-    Headlamp::new(HeadlampProfile {
-        power: POWER,
-        fov_y: FOV_Y,
-        color: [1.0; 3],
-        distribution: IntensityDistribution::Uniform,
-    })
-}
-
 /// The origin looking down −Z, holding `view_models`.
 fn view(view_models: Vec<Instance>) -> ViewState {
     ViewState {
         camera: Camera::perspective(Vec3::ZERO, Quat::IDENTITY, FOV_Y),
-        headlamp: lamp(),
+        headlamp: uniform_lamp(POWER, FOV_Y),
         lights: vec![],
         exposure: 1.0,
         instances: vec![],
@@ -103,7 +86,7 @@ fn a_view_model_is_lit_by_the_lamp_and_drawn_over_a_nearer_wall() {
     let glow = [0.0, 0.0, 0.25];
     // A wall behind it, then a wall between the eye and it.
     for wall_at in [3.0, 0.3] {
-        let (mut renderer, mesh) = renderer_of(&gpu, &wall(-wall_at));
+        let (mut renderer, mesh) = renderer_of(&gpu, &wall(-wall_at, WALL_RHO));
         let with = view(vec![held(mesh, glow)]);
         let final_image = render(&gpu, &mut renderer, &with, "final");
         for c in 0..3 {
@@ -121,7 +104,7 @@ fn a_view_model_is_lit_by_the_lamp_and_drawn_over_a_nearer_wall() {
 #[test]
 fn a_view_model_casts_no_shadow_from_a_detached_lamp_and_is_shadowed_by_the_level() {
     let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
-    let (mut renderer, mesh) = renderer_of(&gpu, &wall(-3.0));
+    let (mut renderer, mesh) = renderer_of(&gpu, &wall(-3.0, WALL_RHO));
     // The lamp put down 1 m behind the eye, looking the same way: the view model stands in
     // its beam between it and the wall.
     let mut detached = view(vec![held(mesh, [0.0; 3])]);
@@ -138,7 +121,7 @@ fn a_view_model_casts_no_shadow_from_a_detached_lamp_and_is_shadowed_by_the_leve
     assert_close(centre(&final_image, 0), facing_radiance(HELD_RHO[0], HELD_AT + 1.0), "lit by the detached lamp");
 
     // A wall between the detached lamp and the view model: the lamp's shadow map hides it.
-    let (mut behind, mesh) = renderer_of(&gpu, &wall(0.5));
+    let (mut behind, mesh) = renderer_of(&gpu, &wall(0.5, WALL_RHO));
     let mut shadowed = detached.clone();
     shadowed.view_models = vec![held(mesh, [0.0; 3])];
     let dark = render(&gpu, &mut behind, &shadowed, "final");
