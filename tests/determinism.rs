@@ -81,7 +81,8 @@ fn shipped_replays_are_their_scripts() {
         assert!(
             stored == replay_files::record_script(&name),
             "tests/replays/{name}.replay is not what its script records now (the simulation or the level \
-             changed): re-make it with HEADLAMP_UPDATE_GOLDENS=1 cargo test --release -p headlamp-tests"
+             changed): re-make it with {}",
+            headlamp_tests::UPDATE_COMMAND
         );
     }
 }

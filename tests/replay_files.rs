@@ -1,6 +1,6 @@
 //! The shipped test replays: `replays/NAME.txt` is the hand-written input script,
 //! `replays/NAME.replay` the replay `headlamp script` made of it (with its per-tick hashes).
-//! With `HEADLAMP_UPDATE_GOLDENS=1` the replays are re-made from their scripts, like goldens.
+//! `update-goldens` re-makes the replays from their scripts, with the goldens.
 //!
 //! A script plays the shipped level its leading comments name with a `# level: ID` line (a
 //! folder under `levels/`: `# level: gallery`); one that names none plays the Cellar.
@@ -60,14 +60,9 @@ pub fn record_script(name: &str) -> Vec<u8> {
     recorder.writer().to_bytes()
 }
 
-/// Opens `replays/NAME.replay` as `headlamp replay` does (its level found by id), first
-/// re-making it from its script when goldens are being updated.
+/// Opens `replays/NAME.replay` as `headlamp replay` does (its level found by id).
 pub fn open(name: &str) -> LoadedReplay {
-    let path = path(name);
-    if crate::updating_goldens() {
-        std::fs::write(&path, record_script(name)).unwrap();
-    }
-    LoadedReplay::open(&path, None).unwrap_or_else(|e| panic!("{e:#}"))
+    LoadedReplay::open(&path(name), None).unwrap_or_else(|e| panic!("{e:#}"))
 }
 
 pub fn path(name: &str) -> PathBuf {

@@ -1,33 +1,117 @@
-//! Golden-image comparison: the metric and tolerance of the project's own frame tests, shared
+//! Golden-image comparison: the metric and tolerances of the project's own frame tests, shared
 //! with `headlamp replay --goldens` so that anyone's level gets the same regression tests.
 //!
-//! Metric: NVIDIA FLIP (perceptual, 0 = identical … 1 = maximal difference) at the default
-//! viewing condition (67 pixels per degree). A frame passes when its mean FLIP error against
-//! the golden is at most [`MEAN_FLIP_TOLERANCE`]. Lavapipe's output varies slightly with the
-//! CPU's SIMD width, so exact bytes are never compared.
+//! A frame passes when all three bounds hold against its golden:
+//! - the mean NVIDIA FLIP error (perceptual, 0 = identical … 1 = maximal difference, at the
+//!   default viewing condition of 67 pixels per degree) is at most [`MEAN_FLIP_TOLERANCE`];
+//! - the 99th percentile of the per-pixel FLIP error is at most [`P99_FLIP_TOLERANCE`]: a local
+//!   change (a thing missing, a shadow moved) that the mean over the frame dilutes;
+//! - the mean luminance is within [`LUMINANCE_TOLERANCE`] of the golden's: a frame dimmer or
+//!   brighter all over, which FLIP reads as small in a dark frame (10 % less light: mean FLIP
+//!   0.009 on the Cellar's hall).
+//!
+//! Lavapipe's output varies slightly with the CPU's SIMD width, so exact bytes are never compared.
 
 use std::path::{Path, PathBuf};
 
 /// Mean FLIP error above which a frame is judged different from its golden.
 pub const MEAN_FLIP_TOLERANCE: f32 = 0.02;
+/// 99th percentile of the per-pixel FLIP error above which a frame is judged different.
+pub const P99_FLIP_TOLERANCE: f32 = 0.1;
+/// Relative difference of the mean luminance above which a frame is judged different.
+pub const LUMINANCE_TOLERANCE: f64 = 0.03;
 
-/// Mean FLIP error between two equally sized images, and the error map (magma colours).
-pub fn flip_error(reference: &image::RgbaImage, test: &image::RgbaImage) -> (f32, image::RgbImage) {
-    let rgb = |img: &image::RgbaImage| {
-        let data: Vec<u8> = img.pixels().flat_map(|p| [p[0], p[1], p[2]]).collect();
-        nv_flip::FlipImageRgb8::with_data(img.width(), img.height(), &data)
-    };
-    let map = nv_flip::flip(rgb(reference), rgb(test), nv_flip::DEFAULT_PIXELS_PER_DEGREE);
-    let mean = nv_flip::FlipPool::from_image(&map).mean();
-    let colours = map.apply_color_lut(&nv_flip::magma_lut());
-    let diff = image::RgbImage::from_raw(map.width(), map.height(), colours.to_vec()).expect("flip map size");
-    (mean, diff)
+/// How a frame differs from its golden, by the three measures the bounds apply to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Difference {
+    pub mean_flip: f32,
+    pub p99_flip: f32,
+    /// The frame's mean luminance over the golden's, minus 1.
+    pub luminance: f64,
 }
 
-/// Compares `actual` with the PNG at `golden` and returns the mean FLIP error. On a failure
-/// (unreadable golden, other size, error over the tolerance) the frame is written beside the
-/// golden as `NAME.actual.png` (and the error map as `NAME.diff.png`), and the message names them.
-pub fn compare(golden: &Path, actual: &image::RgbaImage) -> Result<f32, String> {
+impl Difference {
+    /// The difference between two equally sized images, and the FLIP error map (magma colours).
+    pub fn between(golden: &image::RgbaImage, frame: &image::RgbaImage) -> (Difference, image::RgbImage) {
+        let rgb = |img: &image::RgbaImage| {
+            let data: Vec<u8> = img.pixels().flat_map(|p| [p[0], p[1], p[2]]).collect();
+            nv_flip::FlipImageRgb8::with_data(img.width(), img.height(), &data)
+        };
+        let map = nv_flip::flip(rgb(golden), rgb(frame), nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+        let mean_flip = nv_flip::FlipPool::from_image(&map).mean();
+        let p99_flip = percentile(map.to_vec(), 0.99);
+        let (g, f) = (mean_luminance(golden), mean_luminance(frame));
+        let luminance = if g > 0.0 {
+            f / g - 1.0
+        } else if f > 0.0 {
+            f64::INFINITY
+        } else {
+            0.0
+        };
+        let colours = map.apply_color_lut(&nv_flip::magma_lut());
+        let diff = image::RgbImage::from_raw(map.width(), map.height(), colours.to_vec()).expect("flip map size");
+        (Difference { mean_flip, p99_flip, luminance }, diff)
+    }
+
+    /// Each bound this difference exceeds, in words; empty when the frame passes.
+    pub fn exceeded(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        if self.mean_flip > MEAN_FLIP_TOLERANCE {
+            out.push(format!("mean FLIP error {:.4} exceeds {MEAN_FLIP_TOLERANCE}", self.mean_flip));
+        }
+        if self.p99_flip > P99_FLIP_TOLERANCE {
+            out.push(format!("99th-percentile FLIP error {:.3} exceeds {P99_FLIP_TOLERANCE}", self.p99_flip));
+        }
+        if self.luminance.abs() > LUMINANCE_TOLERANCE {
+            out.push(format!(
+                "mean luminance {:+.1} % from the golden's exceeds ±{} %",
+                100.0 * self.luminance,
+                100.0 * LUMINANCE_TOLERANCE
+            ));
+        }
+        out
+    }
+}
+
+impl std::fmt::Display for Difference {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "mean FLIP {:.4}, 99th percentile {:.3}, luminance {:+.2} %",
+            self.mean_flip,
+            self.p99_flip,
+            100.0 * self.luminance
+        )
+    }
+}
+
+/// The `p` quantile (0…1) of `values` (the nearest rank below).
+fn percentile(mut values: Vec<f32>, p: f64) -> f32 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    let rank = ((values.len() - 1) as f64 * p).floor() as usize;
+    *values.select_nth_unstable_by(rank, f32::total_cmp).1
+}
+
+/// Mean relative luminance (Rec. 709, linear: the sRGB-encoded pixels decoded), 0…1.
+pub fn mean_luminance(img: &image::RgbaImage) -> f64 {
+    let linear = |c: u8| {
+        let c = c as f64 / 255.0;
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    let sum: f64 = img.pixels().map(|p| 0.2126 * linear(p[0]) + 0.7152 * linear(p[1]) + 0.0722 * linear(p[2])).sum();
+    sum / (img.width() as f64 * img.height() as f64).max(1.0)
+}
+
+/// Compares `actual` with the PNG at `golden`. On a failure (unreadable golden, other size, a
+/// bound exceeded) the frame is written beside the golden as `NAME.actual.png` (and the FLIP
+/// error map as `NAME.diff.png`), and the message names them.
+pub fn compare(golden: &Path, actual: &image::RgbaImage) -> Result<Difference, String> {
     let expected = match image::open(golden) {
         Ok(img) => img.to_rgba8(),
         Err(e) => {
@@ -49,19 +133,33 @@ pub fn compare(golden: &Path, actual: &image::RgbaImage) -> Result<f32, String> 
             actual_path.display()
         ));
     }
-    let (mean, diff) = flip_error(&expected, actual);
-    if mean > MEAN_FLIP_TOLERANCE {
+    let (difference, diff) = Difference::between(&expected, actual);
+    let exceeded = difference.exceeded();
+    if !exceeded.is_empty() {
         let actual_path = write_beside(golden, "actual", actual);
         let diff_path = beside(golden, "diff");
         let _ = diff.save(&diff_path);
         return Err(format!(
-            "{}: mean FLIP error {mean:.4} exceeds {MEAN_FLIP_TOLERANCE}; frame: {}, difference: {}",
+            "{}: {}; frame: {}, difference: {}",
             golden.display(),
+            exceeded.join(", "),
             actual_path.display(),
             diff_path.display()
         ));
     }
-    Ok(mean)
+    Ok(difference)
+}
+
+/// Writes `image` as the golden at `path`, and removes what an earlier failure left beside it.
+pub fn write(path: &Path, image: &image::RgbaImage) -> Result<(), String> {
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    image.save(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    for stale in ["actual", "diff"] {
+        let _ = std::fs::remove_file(beside(path, stale));
+    }
+    Ok(())
 }
 
 /// `dir/NAME.png` → `dir/NAME.SUFFIX.png`.
@@ -80,35 +178,74 @@ fn write_beside(golden: &Path, suffix: &str, img: &image::RgbaImage) -> PathBuf 
 mod tests {
     use super::*;
 
+    fn gradient() -> image::RgbaImage {
+        image::RgbaImage::from_fn(64, 64, |x, y| image::Rgba([(x * 4) as u8, (y * 4) as u8, 128, 255]))
+    }
+
     #[test]
-    fn identical_images_have_zero_error_and_different_ones_do_not() {
-        let a = image::RgbaImage::from_fn(64, 64, |x, y| image::Rgba([(x * 4) as u8, (y * 4) as u8, 128, 255]));
-        assert_eq!(flip_error(&a, &a).0, 0.0);
+    fn identical_images_do_not_differ_and_a_white_square_exceeds_every_bound() {
+        let a = gradient();
+        let (same, _) = Difference::between(&a, &a);
+        assert_eq!(same, Difference { mean_flip: 0.0, p99_flip: 0.0, luminance: 0.0 });
+        assert!(same.exceeded().is_empty());
         let mut b = a.clone();
         for y in 16..48 {
             for x in 16..48 {
                 b.put_pixel(x, y, image::Rgba([255, 255, 255, 255]));
             }
         }
-        let (mean, diff) = flip_error(&a, &b);
-        assert!(mean > MEAN_FLIP_TOLERANCE, "a white square must fail the tolerance, got {mean}");
+        let (d, diff) = Difference::between(&a, &b);
+        assert_eq!(d.exceeded().len(), 3, "{d}");
         assert_eq!(diff.dimensions(), (64, 64));
     }
 
     #[test]
-    fn a_failure_writes_the_frame_and_the_difference_beside_the_golden() {
+    fn a_small_local_change_fails_the_percentile_and_a_uniform_dimming_the_luminance() {
+        let a = gradient();
+        // 2 % of the frame (80 pixels) turned white: the mean barely moves, the percentile does.
+        let mut local = a.clone();
+        for i in 0..80 {
+            local.put_pixel(8 + i % 10, 8 + i / 10, image::Rgba([255, 255, 255, 255]));
+        }
+        let (d, _) = Difference::between(&a, &local);
+        assert!(d.mean_flip <= MEAN_FLIP_TOLERANCE && d.p99_flip > P99_FLIP_TOLERANCE, "{d}");
+        // 8 % less light everywhere (each channel's linear value × 0.92).
+        let dim = image::RgbaImage::from_fn(64, 64, |x, y| {
+            let p = a.get_pixel(x, y);
+            let scale = |c: u8| ((c as f64 / 255.0).powf(2.2) * 0.92).powf(1.0 / 2.2) * 255.0;
+            image::Rgba([scale(p[0]).round() as u8, scale(p[1]).round() as u8, scale(p[2]).round() as u8, 255])
+        });
+        let (d, _) = Difference::between(&a, &dim);
+        assert!(d.luminance < -LUMINANCE_TOLERANCE, "{d}");
+        assert_eq!(d.exceeded().len(), 1, "only the luminance: {d}");
+    }
+
+    #[test]
+    fn the_luminance_of_black_white_and_mid_grey() {
+        let grey = |v: u8| image::RgbaImage::from_pixel(4, 4, image::Rgba([v, v, v, 255]));
+        assert_eq!(mean_luminance(&grey(0)), 0.0);
+        assert!((mean_luminance(&grey(255)) - 1.0).abs() < 1e-9);
+        // sRGB 188 encodes linear 0.5.
+        assert!((mean_luminance(&grey(188)) - 0.5).abs() < 0.003);
+    }
+
+    #[test]
+    fn a_failure_writes_the_frame_and_the_difference_beside_the_golden_and_write_clears_them() {
         let dir = std::env::temp_dir().join(format!("headlamp-golden-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let golden = dir.join("tick_000010.png");
         let grey = image::RgbaImage::from_pixel(32, 32, image::Rgba([90, 90, 90, 255]));
-        grey.save(&golden).unwrap();
-        assert_eq!(compare(&golden, &grey), Ok(0.0));
+        write(&golden, &grey).unwrap();
+        assert!(compare(&golden, &grey).unwrap().exceeded().is_empty());
         let white = image::RgbaImage::from_pixel(32, 32, image::Rgba([255, 255, 255, 255]));
         let e = compare(&golden, &white).unwrap_err();
         assert!(e.contains("exceeds") && e.contains("tick_000010.diff.png"), "{e}");
         assert!(dir.join("tick_000010.actual.png").exists() && dir.join("tick_000010.diff.png").exists());
         let e = compare(&golden, &image::RgbaImage::new(16, 16)).unwrap_err();
         assert!(e.contains("(16, 16)"), "{e}");
+        write(&golden, &white).unwrap();
+        assert!(!dir.join("tick_000010.actual.png").exists() && !dir.join("tick_000010.diff.png").exists());
+        assert!(compare(&golden, &white).is_ok());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -35,11 +35,7 @@ pub fn run(
         std::fs::create_dir_all(dir).with_context(|| format!("--goldens {}", dir.display()))?;
         frames(loaded, &ticks, size, |tick, image| {
             let path = dir.join(snapshot_name(tick));
-            image.save(&path).with_context(|| path.display().to_string())?;
-            // What an earlier failure left beside it no longer applies.
-            for stale in ["actual", "diff"] {
-                let _ = std::fs::remove_file(path.with_extension(format!("{stale}.png")));
-            }
+            crate::golden::write(&path, image).map_err(anyhow::Error::msg)?;
             println!("{}: written", path.display());
             Ok(())
         })?;
@@ -48,7 +44,7 @@ pub fn run(
     let mut failed = 0;
     frames(loaded, &ticks, size, |tick, image| {
         match crate::golden::compare(&dir.join(snapshot_name(tick)), image) {
-            Ok(mean) => println!("{}: ok (mean FLIP {mean:.4})", dir.join(snapshot_name(tick)).display()),
+            Ok(difference) => println!("{}: ok ({difference})", dir.join(snapshot_name(tick)).display()),
             Err(e) => {
                 failed += 1;
                 println!("{e}");
