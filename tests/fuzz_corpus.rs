@@ -1,58 +1,137 @@
 //! The fuzz targets (`fuzz_targets.rs`) on a mutated seed corpus of the shipped files, in the
 //! test command: a fixed number of deterministic mutations per target (about a minute in
-//! all on 2 cores), each input required to return without a panic. An input that panics is
-//! written to a file the failure names, to replay with `cargo fuzz run TARGET FILE` or here.
-//! `HEADLAMP_FUZZ_CORPUS=DIR` also writes the seeds to `DIR/TARGET/` for cargo-fuzz.
+//! all on 2 cores), each input required to return without a panic within its time and memory
+//! limits (`fuzz_bounds.rs`). An input that breaks one is written to a file the failure names,
+//! to replay with `cargo fuzz run TARGET FILE` or here.
 
-use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
 
-use headlamp_tests::fuzz_targets::{run, seeds, Mutator, Target};
+use headlamp_tests::fuzz_bounds::{BoundedRunner, CountingAlloc, Limits, Outcome};
+use headlamp_tests::fuzz_targets::{prepare, run, seeds, Mutator, Target};
 
-/// Mutated inputs per target; the file loaders cost more per input than the parsers.
+#[global_allocator]
+static ALLOC: CountingAlloc = CountingAlloc;
+
+/// What one input may take. The shipped files, the largest inputs, take at most 0.3 s and
+/// 40 MiB each on the 2-core VM (the Hall's glTF with its textures).
+const LIMITS: Limits = Limits { time: Duration::from_secs(2), memory: 256 << 20 };
+
+/// Mutated inputs per target; the file loaders and the replay's simulated ticks cost more per
+/// input than the parsers.
 fn rounds(target: Target) -> usize {
     match target {
         Target::Gltf | Target::Glb => 5_000,
-        Target::Obj | Target::Mtl | Target::LevelToml => 10_000,
-        Target::Replay | Target::Script | Target::Config => 50_000,
+        Target::Obj | Target::Mtl | Target::LevelToml | Target::Replay => 10_000,
+        Target::Script | Target::Config => 50_000,
     }
 }
 
+fn crash_dir() -> PathBuf {
+    std::env::temp_dir().join(format!("headlamp-fuzz-crashes-{}", std::process::id()))
+}
+
+/// What [`drive`] found: a line per input that panicked or broke a limit, naming the file it
+/// was written to; how many inputs were accepted; the most memory and time one took.
+struct Driven {
+    failures: Vec<String>,
+    accepted: usize,
+    peak: usize,
+    slowest: Duration,
+}
+
+/// Runs each input under `limits`.
+fn drive(
+    name: &str,
+    limits: Limits,
+    reader: impl Fn(&[u8]) -> Result<(), String> + Send + Clone + 'static,
+    inputs: impl Iterator<Item = Vec<u8>>,
+) -> Driven {
+    let dir = crash_dir();
+    std::fs::create_dir_all(&dir).unwrap();
+    let new_runner = || BoundedRunner::new(limits, Box::new(reader.clone()));
+    let mut runner = new_runner();
+    let mut driven = Driven { failures: Vec::new(), accepted: 0, peak: 0, slowest: Duration::ZERO };
+    for (n, input) in inputs.enumerate() {
+        let file = dir.join(format!("{name}-{n}.bin"));
+        let started = Instant::now();
+        let (outcome, peak) = runner.run(&input, file.clone());
+        driven.slowest = driven.slowest.max(started.elapsed());
+        driven.peak = driven.peak.max(peak);
+        let broke = match outcome {
+            Outcome::Returned(result) => {
+                driven.accepted += result.is_ok() as usize;
+                continue;
+            }
+            Outcome::Panicked => "panicked".to_string(),
+            Outcome::TimedOut => {
+                // The worker is still busy with it: the next input gets a new one.
+                runner = new_runner();
+                format!("ran past {:?}", limits.time)
+            }
+            Outcome::OverMemory(peak) => format!("held {} MiB, over {} MiB", peak >> 20, limits.memory >> 20),
+        };
+        std::fs::write(&file, &input).unwrap();
+        driven.failures.push(format!("{name}: input {n} {broke}: {}", file.display()));
+    }
+    driven
+}
+
 #[test]
-fn mutated_shipped_files_never_panic_any_reader() {
-    let out = std::env::temp_dir().join(format!("headlamp-fuzz-crashes-{}", std::process::id()));
-    let mut crashes = Vec::new();
+fn mutated_shipped_files_never_panic_hang_or_hog_any_reader() {
+    let mut failures = Vec::new();
     for target in Target::ALL {
         let seeds = seeds(target);
         assert!(!seeds.is_empty(), "{}: no seeds", target.name());
-        // HEADLAMP_FUZZ_CORPUS=DIR also writes them out, as cargo-fuzz's starting corpus.
-        if let Some(dir) = std::env::var_os("HEADLAMP_FUZZ_CORPUS") {
-            let dir = std::path::Path::new(&dir).join(target.name());
-            std::fs::create_dir_all(&dir).unwrap();
-            for (i, seed) in seeds.iter().enumerate() {
-                std::fs::write(dir.join(format!("seed_{i}")), seed).unwrap();
-            }
-        }
+        prepare(target);
+        let started = Instant::now();
         // Every seed is a file Headlamp ships or writes: each must be accepted as it is.
-        for (i, seed) in seeds.iter().enumerate() {
-            if let Err(e) = run(target, seed) {
-                panic!("{}: seed {i} is refused: {e}", target.name());
-            }
-        }
+        let files: Vec<Vec<u8>> = seeds.iter().map(|s| s.encode()).collect();
+        let driven = drive(target.name(), LIMITS, move |d| run(target, d), files.into_iter());
+        let ok = driven.failures.is_empty() && driven.accepted == seeds.len();
+        assert!(ok, "{}: seeds refused or broke a limit: {:?}", target.name(), driven.failures);
+        let seed_figures = format!("at most {} MiB and {:?}", driven.peak >> 20, driven.slowest);
         let mut mutator = Mutator::new(0x9e37_79b9_7f4a_7c15 ^ target.name().len() as u64);
-        let mut accepted = 0;
-        for n in 0..rounds(target) {
-            let input = mutator.mutate(&seeds[n % seeds.len()]);
-            match catch_unwind(AssertUnwindSafe(|| run(target, &input))) {
-                Ok(result) => accepted += result.is_ok() as usize,
-                Err(_) => {
-                    std::fs::create_dir_all(&out).unwrap();
-                    let file = out.join(format!("{}-{n}.bin", target.name()));
-                    std::fs::write(&file, &input).unwrap();
-                    crashes.push(format!("{} panicked on mutation {n}: {}", target.name(), file.display()));
-                }
-            }
-        }
-        println!("{}: {} seeds, {} mutations, {accepted} accepted", target.name(), seeds.len(), rounds(target));
+        let inputs = (0..rounds(target)).map(|n| mutator.mutate_seed(&seeds[n % seeds.len()]));
+        let driven = drive(target.name(), LIMITS, move |d| run(target, d), inputs);
+        println!(
+            "{}: {} seeds ({seed_figures}), {} mutations, {} accepted, at most {} MiB and {:?}; {:.1} s in all",
+            target.name(),
+            seeds.len(),
+            rounds(target),
+            driven.accepted,
+            driven.peak >> 20,
+            driven.slowest,
+            started.elapsed().as_secs_f64()
+        );
+        failures.extend(driven.failures);
     }
-    assert!(crashes.is_empty(), "{}", crashes.join("\n"));
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The limits are real: an input that hangs or holds too much fails, named; the next input is
+/// run as usual.
+#[test]
+fn a_hanging_or_hogging_input_fails_by_name() {
+    let limits = Limits { time: Duration::from_millis(300), memory: 16 << 20 };
+    let reader = |d: &[u8]| {
+        match d {
+            b"hang" => std::thread::sleep(Duration::from_secs(2)),
+            b"hog" => drop(std::hint::black_box(vec![1u8; 32 << 20])),
+            b"panic" => panic!("a reader's bug"),
+            _ => {}
+        }
+        Ok(())
+    };
+    let inputs = [&b"ok"[..], b"hang", b"ok", b"hog", b"panic", b"ok"].map(<[u8]>::to_vec);
+    let Driven { failures, accepted, peak, .. } = drive("limits", limits, reader, inputs.clone().into_iter());
+    assert_eq!(accepted, 3, "{failures:?}");
+    assert!(peak >= 32 << 20, "the hog's peak was counted: {peak}");
+    assert_eq!(failures.len(), 3, "{failures:?}");
+    let expect = [(1, "ran past 300ms"), (3, "held 32 MiB, over 16 MiB"), (4, "panicked")];
+    for ((n, what), line) in expect.iter().zip(&failures) {
+        let file = crash_dir().join(format!("limits-{n}.bin"));
+        assert!(line.contains(what) && line.contains(&file.display().to_string()), "{line}");
+        assert_eq!(std::fs::read(&file).unwrap(), inputs[*n], "{}", file.display());
+    }
 }

@@ -2,14 +2,21 @@
 //! must return (an `Ok` or an `Err`, never a panic, never an endless wait) for any input.
 //!
 //! Two drivers share these entry points: `tests/fuzz_corpus.rs` mutates a seed corpus of the
-//! shipped files for a bounded number of rounds in the test command, and the cargo-fuzz
-//! project in `tests/fuzz/` (libFuzzer, nightly) runs them for as long as you like
-//! (docs/testing.md says how).
+//! shipped files for a bounded number of rounds in the test command, each input under a time
+//! and memory limit (`fuzz_bounds.rs`), and the cargo-fuzz project in `tests/fuzz/` (libFuzzer,
+//! nightly) runs them for as long as you like (docs/testing.md says how).
+//!
+//! The corpus driver's mutations know the files' structure where bytes alone would stop at the
+//! surface: a glTF's binary buffer and images are mutated before they are base64-encoded (else
+//! nearly every edit lands in base64 text) and its JSON apart from them, and a replay's body is
+//! re-sealed with its checksum after a mutation (else nearly every edit stops at the checksum).
 
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
 
 use engine::replay::Replay;
 use engine::scene;
+use game::sim::{LevelWorld, Simulation};
 
 /// What is fuzzed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,7 +110,7 @@ pub fn run(target: Target, data: &[u8]) -> Result<(), String> {
             write(&level, "level.toml", data);
             scene::load_level(&level).map(drop).map_err(|e| e.to_string())
         }
-        Target::Replay => Replay::parse(data, Path::new("f.replay")).map(drop).map_err(|e| e.to_string()),
+        Target::Replay => replay(data),
         Target::Script => game::script::parse_steps(&text(), Path::new("f.txt")).map(drop),
         Target::Config => {
             game_ui::Config::from_toml(&text(), Path::new("config.toml")).map(drop).map_err(|e| e.to_string())
@@ -111,11 +118,128 @@ pub fn run(target: Target, data: &[u8]) -> Result<(), String> {
     }
 }
 
+/// Ticks of a fuzzed replay that are simulated: enough for its commands to move, turn, jump,
+/// fire and throw the lamp, few enough for thousands of inputs.
+const SIMULATED_TICKS: usize = 32;
+
+/// The shipped levels, which a fuzzed replay may name, with their worlds: loaded once.
+fn shipped_levels() -> &'static [(String, scene::Level, Arc<LevelWorld>)] {
+    static LEVELS: OnceLock<Vec<(String, scene::Level, Arc<LevelWorld>)>> = OnceLock::new();
+    LEVELS.get_or_init(|| {
+        SHIPPED_LEVELS
+            .iter()
+            .map(|id| {
+                let level = scene::load_level(&root().join("levels").join(id)).expect("a shipped level");
+                let world = game::sim::level_world(&level).expect("a shipped level's world");
+                (id.to_string(), level, world)
+            })
+            .collect()
+    })
+}
+
+/// Loads what `target` reads besides its input (the shipped levels a replay names), so that a
+/// driver can do it before it starts counting an input's time and memory.
+pub fn prepare(target: Target) {
+    if target == Target::Replay {
+        shipped_levels();
+    }
+}
+
+const SHIPPED_LEVELS: [&str; 3] = ["cellar", "gallery", "hall"];
+
+/// A replay as `headlamp replay` reads it: the container, the settings and commands decoded, and
+/// when it names a shipped level, its first ticks simulated (a command is any 7 bytes, a tick
+/// rate anything the header allows).
+fn replay(data: &[u8]) -> Result<(), String> {
+    let path = Path::new("f.replay");
+    let replay = Replay::parse(data, path).map_err(|e| e.to_string())?;
+    let (commands, _gi) = game::recording::decode(&replay, path).map_err(|e| format!("{e:#}"))?;
+    let h = &replay.header;
+    if let Some((_, level, world)) = shipped_levels().iter().find(|(id, ..)| *id == h.level_id) {
+        let mut sim = Simulation::new(level, world.clone(), h.tick_rate, h.seed);
+        for command in commands.iter().take(SIMULATED_TICKS) {
+            sim.step(command);
+        }
+    }
+    Ok(())
+}
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// A seed of the corpus, kept in the structure its mutations need.
+pub enum Seed {
+    /// Any other file: mutated as bytes.
+    Bytes(Vec<u8>),
+    /// A glTF document whose buffer and images are given apart: `doc`'s `uri`s hold the
+    /// placeholders [`buffer_placeholder`] and [`image_placeholder`], filled in with base64
+    /// `data:` URIs when encoded (a GLB's buffer, with no uri, becomes its BIN chunk).
+    Gltf { doc: String, bin: Vec<u8>, images: Vec<Vec<u8>>, glb: bool },
+    /// A replay's bytes before its checksum, sealed when encoded.
+    Replay(Vec<u8>),
+}
+
+fn buffer_placeholder() -> &'static str {
+    "@BUFFER@"
+}
+
+fn image_placeholder(i: usize) -> String {
+    format!("@IMAGE{i}@")
+}
+
+impl Seed {
+    /// The file this seed stands for.
+    pub fn encode(&self) -> Vec<u8> {
+        match self {
+            Seed::Bytes(bytes) => bytes.clone(),
+            Seed::Gltf { doc, bin, images, glb } => encode_gltf(doc, bin, images, *glb),
+            Seed::Replay(body) => seal(body.clone()),
+        }
+    }
+}
+
+fn encode_gltf(doc: &str, bin: &[u8], images: &[Vec<u8>], glb: bool) -> Vec<u8> {
+    let mut doc = doc.to_string();
+    for (i, image) in images.iter().enumerate() {
+        doc = doc.replace(&image_placeholder(i), &format!("data:image/png;base64,{}", scene::encode_base64(image)));
+    }
+    if glb {
+        return scene::pack_glb(doc.as_bytes(), bin);
+    }
+    let uri = format!("data:application/octet-stream;base64,{}", scene::encode_base64(bin));
+    doc.replace(buffer_placeholder(), &uri).into_bytes()
+}
+
+/// A replay's body followed by its checksum, as `ReplayWriter` writes it.
+fn seal(mut body: Vec<u8>) -> Vec<u8> {
+    let mut h = scene::Fnv1a::default();
+    h.write(&body);
+    body.extend_from_slice(&h.finish().to_le_bytes());
+    body
+}
+
 /// The seed corpus: the shipped files of each kind (and a config the game writes).
-pub fn seeds(target: Target) -> Vec<Vec<u8>> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+pub fn seeds(target: Target) -> Vec<Seed> {
+    let bytes = |files: Vec<Vec<u8>>| files.into_iter().map(Seed::Bytes).collect();
+    match target {
+        Target::Gltf | Target::Glb => {
+            let glb = target == Target::Glb;
+            SHIPPED_LEVELS.iter().map(|l| split_gltf(&root().join("levels").join(l), glb)).collect()
+        }
+        Target::Replay => seed_files(target)
+            .into_iter()
+            .map(|file| Seed::Replay(file[..file.len().saturating_sub(8)].to_vec()))
+            .collect(),
+        _ => bytes(seed_files(target)),
+    }
+}
+
+/// The seed corpus as files, for cargo-fuzz's starting corpus.
+pub fn seed_files(target: Target) -> Vec<Vec<u8>> {
+    let root = root();
     let read = |p: PathBuf| std::fs::read(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-    let levels: Vec<PathBuf> = ["cellar", "gallery", "hall"].iter().map(|l| root.join("levels").join(l)).collect();
+    let levels: Vec<PathBuf> = SHIPPED_LEVELS.iter().map(|l| root.join("levels").join(l)).collect();
     let in_dir = |dir: PathBuf, ext: &str| -> Vec<Vec<u8>> {
         let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
             .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
@@ -127,8 +251,7 @@ pub fn seeds(target: Target) -> Vec<Vec<u8>> {
     };
     match target {
         // The level's buffer and textures are files beside it; embedded, the seed stands alone.
-        Target::Gltf => levels.iter().map(|l| embedded(l, false)).collect(),
-        Target::Glb => levels.iter().map(|l| embedded(l, true)).collect(),
+        Target::Gltf | Target::Glb => seeds(target).iter().map(Seed::encode).collect(),
         Target::Obj => vec![OBJ.to_vec(), b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf -1 -2 -3\n".to_vec()],
         Target::Mtl => vec![MTL.to_vec(), b"newmtl a\nKd 1 1 1\nmap_Kd -s 1 1 1 t.png\nd 0.5\n".to_vec()],
         // Pointed at the small OBJ the target writes beside it.
@@ -146,31 +269,30 @@ pub fn seeds(target: Target) -> Vec<Vec<u8>> {
     }
 }
 
-/// A level's scene.gltf with every file it names embedded: as data: URIs, or (`glb`) the
-/// buffer in a GLB's BIN chunk and the images as data: URIs.
-fn embedded(level: &Path, glb: bool) -> Vec<u8> {
+/// A level's scene.gltf with the files it names read: its buffer and images apart from the
+/// document, which names them by placeholders.
+fn split_gltf(level: &Path, glb: bool) -> Seed {
     let read =
         |name: &str| std::fs::read(level.join(name)).unwrap_or_else(|e| panic!("{}/{name}: {e}", level.display()));
     let mut doc: serde_json::Value = serde_json::from_slice(&read("scene.gltf")).expect("a shipped glTF is JSON");
-    let data_uri = |bytes: &[u8]| {
-        serde_json::Value::String(format!("data:application/octet-stream;base64,{}", scene::encode_base64(bytes)))
-    };
+    let mut images = Vec::new();
     // (`get_mut`: indexing a missing key would insert a null, which is not glTF.)
     for image in doc.get_mut("images").and_then(|i| i.as_array_mut()).into_iter().flatten() {
         let file = image["uri"].as_str().map(str::to_owned);
         if let Some(file) = file {
-            image["uri"] =
-                serde_json::Value::String(format!("data:image/png;base64,{}", scene::encode_base64(&read(&file))));
+            image["uri"] = image_placeholder(images.len()).into();
+            images.push(read(&file));
         }
     }
     let buffer = &mut doc["buffers"][0];
     let bin = read(buffer["uri"].as_str().expect("a shipped glTF names its buffer"));
-    if !glb {
-        buffer["uri"] = data_uri(&bin);
-        return serde_json::to_vec(&doc).expect("JSON");
+    if glb {
+        // A GLB's buffer is its BIN chunk: the buffer without a uri.
+        buffer.as_object_mut().expect("a buffer object").remove("uri");
+    } else {
+        buffer["uri"] = buffer_placeholder().into();
     }
-    buffer.as_object_mut().expect("a buffer object").remove("uri");
-    scene::pack_glb(&serde_json::to_vec(&doc).expect("JSON"), &bin)
+    Seed::Gltf { doc: serde_json::to_string(&doc).expect("JSON"), bin, images, glb }
 }
 
 /// A deterministic mutator (xorshift): the corpus driver's stand-in for libFuzzer's.
@@ -190,6 +312,28 @@ impl Mutator {
 
     fn below(&mut self, n: usize) -> usize {
         (self.next() % n.max(1) as u64) as usize
+    }
+
+    /// An input made from `seed`: a quarter of the time its file's bytes mutated, else a part
+    /// of its structure (a glTF's JSON, buffer or an image; a replay's body, re-sealed).
+    pub fn mutate_seed(&mut self, seed: &Seed) -> Vec<u8> {
+        if self.below(4) == 0 {
+            return self.mutate(&seed.encode());
+        }
+        match seed {
+            Seed::Bytes(bytes) => self.mutate(bytes),
+            Seed::Gltf { doc, bin, images, glb } => match self.below(2 + !images.is_empty() as usize) {
+                0 => encode_gltf(&String::from_utf8_lossy(&self.mutate(doc.as_bytes())), bin, images, *glb),
+                1 => encode_gltf(doc, &self.mutate(bin), images, *glb),
+                _ => {
+                    let mut images = images.clone();
+                    let i = self.below(images.len());
+                    images[i] = self.mutate(&images[i]);
+                    encode_gltf(doc, bin, &images, *glb)
+                }
+            },
+            Seed::Replay(body) => seal(self.mutate(body)),
+        }
     }
 
     /// One to four edits of `input`: flipped bits, overwritten or deleted bytes, a repeated

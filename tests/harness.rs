@@ -11,6 +11,7 @@ use std::path::PathBuf;
 pub use engine;
 
 pub mod frames;
+pub mod fuzz_bounds;
 pub mod fuzz_targets;
 pub mod replay_files;
 

@@ -97,15 +97,8 @@ impl LoadedReplay {
     /// the shipped levels, then under `levels/` in the working directory.
     pub fn open(path: &Path, level: Option<&Path>) -> anyhow::Result<Self> {
         let replay = Replay::read(path)?;
+        let (commands, gi) = decode(&replay, path)?;
         let h = &replay.header;
-        if h.command_size != TickCommand::SIZE {
-            bail!(
-                "{}: commands are {} bytes, this build's are {} (recorded by another version)",
-                path.display(),
-                h.command_size,
-                TickCommand::SIZE
-            );
-        }
         let level_path = match level {
             Some(p) => p.to_owned(),
             None => find_level(&h.level_id).ok_or_else(|| {
@@ -128,16 +121,6 @@ impl LoadedReplay {
                 level.content_hash
             );
         }
-        let mut gi = GiSettings::default();
-        for (key, value) in &h.settings {
-            let name = key.strip_prefix("gi.").ok_or_else(|| anyhow!("{}: unknown setting '{key}'", path.display()))?;
-            gi.set(name, value).map_err(|e| anyhow!("{}: {e}", path.display()))?;
-        }
-        let commands = (0..replay.tick_count())
-            .map(|i| {
-                TickCommand::decode(replay.command(i)).map_err(|e| anyhow!("{}: tick {}: {e}", path.display(), i + 1))
-            })
-            .collect::<anyhow::Result<Vec<_>>>()?;
         Ok(Self { path: path.to_owned(), replay, commands, level, gi })
     }
 
@@ -165,6 +148,29 @@ impl LoadedReplay {
         }
         Ok(sim.state)
     }
+}
+
+/// What the game reads from a replay's container besides its level: the GI settings it was
+/// recorded with and its commands, decoded. `path` names the file in errors.
+pub fn decode(replay: &Replay, path: &Path) -> anyhow::Result<(Vec<TickCommand>, GiSettings)> {
+    let h = &replay.header;
+    if h.command_size != TickCommand::SIZE {
+        bail!(
+            "{}: commands are {} bytes, this build's are {} (recorded by another version)",
+            path.display(),
+            h.command_size,
+            TickCommand::SIZE
+        );
+    }
+    let mut gi = GiSettings::default();
+    for (key, value) in &h.settings {
+        let name = key.strip_prefix("gi.").ok_or_else(|| anyhow!("{}: unknown setting '{key}'", path.display()))?;
+        gi.set(name, value).map_err(|e| anyhow!("{}: {e}", path.display()))?;
+    }
+    let commands = (0..replay.tick_count())
+        .map(|i| TickCommand::decode(replay.command(i)).map_err(|e| anyhow!("{}: tick {}: {e}", path.display(), i + 1)))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    Ok((commands, gi))
 }
 
 /// The first tick whose state hash differs from the recording.

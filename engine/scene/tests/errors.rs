@@ -9,6 +9,10 @@ use common::*;
 use scene::{load_gltf, load_level, load_obj, load_scene_file, load_texture, LoadError};
 use serde_json::{json, Value};
 
+/// Mutations per input in the two fuzz tests below: fixed, so every run checks the same inputs
+/// (the longer, coverage-guided runs are `tests/fuzz/`'s, see docs/testing.md).
+const ROUNDS: usize = 300;
+
 /// Asserts the error is one line, names `file`, and contains every word in `words`.
 fn expect_err<T: std::fmt::Debug>(result: Result<T, LoadError>, file: &str, words: &[&str]) -> String {
     let msg = result.expect_err("expected an error").to_string();
@@ -342,9 +346,7 @@ fn mutated_inputs_never_panic() {
         rng ^= rng << 17;
         rng
     };
-    // SCENE_FUZZ_ROUNDS raises the count for a longer local run.
-    let rounds = std::env::var("SCENE_FUZZ_ROUNDS").ok().and_then(|r| r.parse().ok()).unwrap_or(300);
-    for round in 0..rounds {
+    for round in 0..ROUNDS {
         for (name, original) in [("f.glb", &glb_bytes), ("f.gltf", &json_bytes), ("f.obj", &obj)] {
             let mut bytes = original.clone();
             for _ in 0..1 + next() % 4 {
@@ -412,8 +414,7 @@ fn mutated_gltf_values_never_panic() {
         rng ^= rng << 17;
         rng
     };
-    let rounds = std::env::var("SCENE_FUZZ_ROUNDS").ok().and_then(|r| r.parse().ok()).unwrap_or(300);
-    for _ in 0..rounds {
+    for _ in 0..ROUNDS {
         let mut d = doc.clone();
         for _ in 0..1 + next() % 3 {
             let leaf = &leaves[(next() as usize) % leaves.len()];
