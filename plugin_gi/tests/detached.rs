@@ -34,7 +34,9 @@ fn a_lamp_put_down_at_the_camera_reproduces_the_attached_lamp() {
     }
     let error = block_error(&d, &a);
     println!("detached vs attached indirect: {error:.4}");
-    assert!(error < 0.06, "detached indirect differs from attached by {error:.4}");
+    // Within the accuracy goal (measured: 2.3 %; the exact one bounce itself moves 2.0 % between
+    // the two samplings of its senders, 96² and 1024²).
+    assert!(error <= ERROR_GOAL, "detached indirect differs from attached by {error:.4}");
 }
 
 /// With the lamp detached and switched off there is no flux, hence no indirect light.

@@ -48,7 +48,7 @@ fn the_flash_adds_to_the_lamp_in_the_indirect_light_and_the_reference() {
     let gi_error = block_error(&with, &reference);
     println!("reference: flash vs one lamp {ref_error:.6}; plugin vs reference with the flash {gi_error:.4}");
     assert!(ref_error < 1e-4, "the reference does not hold the flash's flux: {ref_error}");
-    assert!(gi_error <= 0.10, "with the flash on, the plugin is {gi_error:.4} from the reference");
+    assert!(gi_error <= ERROR_GOAL, "with the flash on, the plugin is {gi_error:.4} from the reference");
 }
 
 #[test]
@@ -63,7 +63,7 @@ fn the_flash_alone_lights_indirectly_and_matches_the_reference() {
     let error = block_error(&indirect, &reference);
     println!("flash only: plugin vs reference {error:.4}");
     assert!(total(&reference) > 0.0, "the flash must reflect light");
-    assert!(error <= 0.10, "flash only: the plugin is {error:.4} from the reference");
+    assert!(error <= ERROR_GOAL, "flash only: the plugin is {error:.4} from the reference");
 }
 
 /// Detached, the reflective shadow map is the lamp's view: the flash changes the direct light
@@ -129,15 +129,24 @@ fn the_gi_works_at_half_render_scale() {
     let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
     let view = cornell_view(4.0);
     let full = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
+    let full_reference = render_linear(&gpu, &mut r, &view, "reference", SIZE);
     r.renderer.set_render_scale(0.5);
     let half = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
     let flux = r.renderer.graph().physical_texture(plugin_gi::names::FLUX).unwrap();
     assert_eq!((flux.width(), flux.height()), (SIZE.0 / 2, SIZE.1 / 2));
     let reference = render_linear(&gpu, &mut r, &view, "reference", SIZE);
     let (against_reference, against_full) = (block_error(&half, &reference), block_error(&half, &full));
-    println!("half scale: vs its reference {against_reference:.4}, vs full scale {against_full:.4}");
-    assert!(against_reference <= 0.10, "half scale: {against_reference:.4} from the reference");
-    // A quarter of the flux texels and receivers: close, not equal (the exact one bounce
-    // itself moves between the two resolutions, its senders being a quarter as many).
-    assert!(against_full <= 0.15, "half scale: {against_full:.4} from the full-scale indirect light");
+    let reference_moves = block_error(&reference, &full_reference);
+    println!(
+        "half scale: vs its reference {against_reference:.4}, vs full scale {against_full:.4}; the reference \
+         itself moves {reference_moves:.4} between the scales"
+    );
+    assert!(against_reference <= ERROR_GOAL, "half scale: {against_reference:.4} from the reference");
+    // A quarter of the flux texels and receivers: close, not equal; the exact one bounce
+    // itself moves 11 % between the two scales, its senders being a quarter as many. The GI
+    // must move as the exact bounce does, within the goal (measured: 12.5 % against 11.4 %).
+    assert!(
+        (against_full - reference_moves).abs() <= ERROR_GOAL,
+        "half scale: {against_full:.4} from the full-scale indirect light, the reference {reference_moves:.4}"
+    );
 }

@@ -31,7 +31,10 @@ fn error_with(settings: GiSettings) -> (f64, f64) {
 fn indirect_matches_the_reference_and_improves_as_lights_split_finer() {
     let (at_default, energy) = error_with(GiSettings::default());
     println!("defaults: relative L2 error of 8×8 block means {at_default:.4}, energy {energy:+.4}");
-    assert!(at_default <= 0.10, "error {at_default:.4} at the default settings exceeds 10 %");
+    assert!(
+        at_default <= ERROR_GOAL && energy.abs() <= ENERGY_GOAL,
+        "at the default settings: error {at_default:.4}, energy {energy:+.4}"
+    );
     // Receivers at full resolution: what is left is the lights' grouping.
     let errors: Vec<(f32, (f64, f64))> = [2.0, 1.0, 0.5].iter().map(|&s| (s, error_with(settings(s, 1.0)))).collect();
     println!("(error, energy) by split ratio: {errors:?}");
@@ -39,7 +42,11 @@ fn indirect_matches_the_reference_and_improves_as_lights_split_finer() {
         assert!(w[1].1 .0 < w[0].1 .0, "error must fall as lights split finer: {errors:?}");
     }
     let (error, energy) = errors[2].1;
-    assert!(error <= 0.05 && energy.abs() <= 0.01, "full-resolution receivers: error {error:.4}, energy {energy:+.4}");
+    // (Tighter on energy than the goal: with every receiver evaluated, only grouping is left.)
+    assert!(
+        error <= ERROR_GOAL && energy.abs() <= 0.01,
+        "full-resolution receivers: error {error:.4}, energy {energy:+.4}"
+    );
 }
 
 /// Every lit texel's flux reaches a tile exactly once through its cut: the lights of the centre
@@ -323,8 +330,9 @@ fn second_bounce_matches_a_cpu_computation() {
     println!("two bounces: relative L2 error {error:.5}, second bounce adds {second:.4}");
     assert!(second > 0.0);
     // Even at its finest the GI groups lights (a tile's cut holds at most 768 of these 1,700
-    // texels), and the second bounce inherits the first's grouping: per pixel, within 10 %.
-    assert!(error < 0.10, "two-bounce indirect differs from the CPU computation by {error:.4}");
+    // texels), and the second bounce inherits the first's grouping; per pixel, it is still
+    // within the goal (measured: 4.1 %).
+    assert!(error <= ERROR_GOAL, "two-bounce indirect differs from the CPU computation by {error:.4}");
 }
 
 #[test]
@@ -361,11 +369,6 @@ fn colour_bleeds_from_the_coloured_walls_onto_the_white_floor() {
     let view = cornell_view(4.0);
     let indirect = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
     let reference = render_linear(&gpu, &mut r, &view, "reference", SIZE);
-    if let Ok(dir) = std::env::var("HEADLAMP_GI_DUMP") {
-        let png = |name: &str| std::path::Path::new(&dir).join(name);
-        render_display(&gpu, &mut r, &view, "final", SIZE).save(png("cornell_final.png")).unwrap();
-        render_display(&gpu, &mut r, &view, "indirect", SIZE).save(png("cornell_indirect.png")).unwrap();
-    }
     let at = |img: &image::Rgba32FImage, x: f32, z: f32| {
         let (px, py) = project(&view, Vec3::new(x, 0.0, z), SIZE);
         img.get_pixel(px, py).0

@@ -15,6 +15,12 @@ use plugin_gi::{GiHandle, GiPlugin, GiSettings};
 
 pub const FOV_Y: f32 = 50.0 * std::f32::consts::PI / 180.0;
 
+/// The GI's accuracy goal against an exact computation: the relative L2 error of 8×8 block
+/// means (`block_error`) …
+pub const ERROR_GOAL: f64 = 0.05;
+/// … and the bounced energy (Σ indirect / Σ exact − 1).
+pub const ENERGY_GOAL: f64 = 0.03;
+
 pub fn gpu() -> Gpu {
     Gpu::headless().unwrap_or_else(|e| panic!("{e}"))
 }
