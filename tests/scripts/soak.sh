@@ -3,14 +3,39 @@
 # (default 600): walking, looking, firing, the lamp toggled, set down, thrown and picked up,
 # the pause menu, restarts, F3, F5 and live reloads of an edited level.toml, the window
 # shrunk to 1x1 and back. Samples the process's resident memory every 15 s (on lavapipe the
-# GPU's allocations are the process's too) and fails if the game dies or logs an error.
+# GPU's allocations are the process's too) and fails if the game dies, logs an error, or its
+# resident memory at the end is more than 10 % above what it was at 2 minutes (a leak: the
+# first two minutes are warm-up, caches and pools filling). SECONDS must be at least 180.
 # Too long for the test command; run before a release and after changes to the frame loop,
 # the renderer or level loading. Needs Xvfb and xdotool (apt-get install xvfb xdotool).
 #
 #   tests/scripts/soak.sh [SECONDS]    prints "t_s,rss_mib" lines, then a summary
+#   tests/scripts/soak.sh --judge-memory T:MIB...
+#                                      only the memory verdict, on samples given (for its test)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+
+# The memory verdict on "t_s:rss_mib" samples: the last against the first at 2 minutes or later.
+judge_memory() {
+    local settled="" last="" s
+    for s in "$@"; do
+        [[ -z $settled ]] && (( ${s%%:*} >= 120 )) && settled=${s#*:}
+        last=${s#*:}
+    done
+    [[ -n $settled ]] || { echo "soak: no memory sample at 2 minutes or later" >&2; return 1; }
+    local growth
+    growth=$(awk -v a="$settled" -v b="$last" 'BEGIN { printf "%.1f", (b - a) * 100 / a }')
+    echo "soak: resident memory ${settled} MiB at 2 min, ${last} MiB at the end: grew ${growth} % (limit 10 %)"
+    (( last * 10 <= settled * 11 )) || { echo "soak: resident memory grew more than 10 % after warm-up: a leak" >&2; return 1; }
+}
+if [[ ${1:-} == --judge-memory ]]; then
+    shift
+    judge_memory "$@"
+    exit
+fi
+
 seconds=${1:-600}
+(( seconds >= 180 )) || { echo "soak: run for at least 180 s (memory is compared from minute 2 to the end)" >&2; exit 2; }
 for tool in Xvfb xdotool; do
     command -v "$tool" >/dev/null || { echo "soak: needs $tool (apt-get install xvfb xdotool)" >&2; exit 2; }
 done
@@ -69,9 +94,9 @@ done
 alive || { echo "soak: the game died at the end" >&2; exit 1; }
 errors=$(grep -cE "ERROR|panicked" "$work/play.log" || true)
 first=${samples[0]#*:}; last=${samples[-1]#*:}
-settled=$first; for s in "${samples[@]}"; do (( ${s%%:*} >= 120 )) && { settled=${s#*:}; break; }; done
 max=0; for s in "${samples[@]}"; do (( ${s#*:} > max )) && max=${s#*:}; done
 c() { echo "${counts[$1]:-0}"; }
 echo "soak: input: $(( $(c 0) + $(c 1) + $(c 2) )) walks, $(( $(c 3) + $(c 4) )) looks, $(c 5) shots, $(c 6) lamp/reload/jump/crouch keys, $(c 7) pauses, $(c 8) restarts, $(c 9) F5 reloads, $(c 10) level.toml edits, $(c 11) resizes to 1x1, $(c 12) F3, $(c 13) clicks on Play"
-echo "soak: ${seconds} s, ${#samples[@]} samples; RSS ${first} MiB at start, ${settled} MiB at 2 min, ${last} MiB at the end, ${max} MiB at most; ${errors} errors logged"
+echo "soak: ${seconds} s, ${#samples[@]} samples; RSS ${first} MiB at start, ${last} MiB at the end, ${max} MiB at most; ${errors} errors logged"
 (( errors == 0 )) || { grep -E "ERROR|panicked" "$work/play.log" | head -5 >&2; exit 1; }
+judge_memory "${samples[@]}"
