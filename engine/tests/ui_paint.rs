@@ -74,9 +74,6 @@ fn paints_ui_over_the_frame() {
     assert!(!painter.is_empty());
     painter.paint(&gpu, &target.view, SIZE);
     let bytes = read_texture(&gpu, &target.texture);
-    if let Ok(path) = std::env::var("UI_PAINT_DUMP") {
-        image::RgbaImage::from_raw(SIZE[0], SIZE[1], bytes.clone()).unwrap().save(path).unwrap();
-    }
 
     // Inside the rectangle (1 px in from its anti-aliased edges): red.
     for y in 21..59 {

@@ -1,0 +1,186 @@
+//! The repository stands alone and its tests cannot be switched off from outside: nothing in it
+//! names a path above its root (a fresh clone has nothing beside it), and no test reads an
+//! environment variable (the test command must check the same things whatever shell runs it).
+
+use std::path::{Component, Path, PathBuf};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("the workspace root").to_path_buf()
+}
+
+/// What `.gitignore` leaves out: directory patterns and `*.suffix` file patterns (all it holds).
+struct Ignored {
+    dirs: Vec<String>,
+    suffixes: Vec<String>,
+}
+
+impl Ignored {
+    fn read(root: &Path) -> Self {
+        let text = std::fs::read_to_string(root.join(".gitignore")).unwrap_or_default();
+        let mut ignored = Ignored { dirs: vec![".git".into()], suffixes: Vec::new() };
+        for line in text.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#')) {
+            match line.strip_prefix('*') {
+                Some(suffix) => ignored.suffixes.push(suffix.to_string()),
+                None => ignored.dirs.push(line.trim_matches('/').to_string()),
+            }
+        }
+        ignored
+    }
+
+    /// `relative`: a path under the root, with `/` separators.
+    fn covers(&self, relative: &str, is_dir: bool) -> bool {
+        if !is_dir {
+            return self.suffixes.iter().any(|s| relative.ends_with(s.as_str()));
+        }
+        let name = relative.rsplit('/').next().unwrap_or(relative);
+        // A pattern with a slash is anchored at the root; one without matches a name anywhere.
+        self.dirs.iter().any(|d| if d.contains('/') { relative == d } else { name == d })
+    }
+}
+
+/// Every text file of the repository (not what `.gitignore` leaves out), as (relative path, text).
+fn text_files() -> Vec<(String, String)> {
+    let root = root();
+    let ignored = Ignored::read(&root);
+    let mut out = Vec::new();
+    let mut stack = vec![root.clone()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
+            let path = entry.unwrap().path();
+            let relative = path.strip_prefix(&root).unwrap().to_string_lossy().replace('\\', "/");
+            let is_dir = path.is_dir();
+            if ignored.covers(&relative, is_dir) {
+                continue;
+            }
+            if is_dir {
+                stack.push(path);
+            } else if let Ok(text) = String::from_utf8(std::fs::read(&path).unwrap()) {
+                if !text.contains('\0') {
+                    out.push((relative, text));
+                }
+            }
+        }
+    }
+    assert!(out.len() > 100, "found only {} text files under {}", out.len(), root.display());
+    out
+}
+
+/// The folder a relative path on `line` of `file` is resolved against: a crate's manifest folder
+/// for `CARGO_MANIFEST_DIR` paths; the file's own folder for Markdown links, `include_str!`,
+/// scripts (`$(dirname "$0")`) and strings in code; the root for paths in Markdown's prose and
+/// code spans (commands are run from the root).
+fn base_of(file: &str, line: &str, token_start: usize) -> PathBuf {
+    let root = root();
+    let dir = root.join(file).parent().unwrap().to_path_buf();
+    if line.contains("CARGO_MANIFEST_DIR") {
+        return dir.ancestors().find(|d| d.join("Cargo.toml").exists()).expect("a crate").to_path_buf();
+    }
+    if file.ends_with(".md") {
+        let in_link = line[..token_start].ends_with("](");
+        return if in_link { dir } else { root };
+    }
+    dir
+}
+
+/// Each relative path on `line` that climbs (`..`), with where it starts.
+fn climbing_paths(line: &str) -> Vec<(usize, &str)> {
+    let stop = |c: char| c.is_whitespace() || "\"'`()[]<>,;=".contains(c);
+    let mut out = Vec::new();
+    let mut from = 0;
+    while let Some(at) = line[from..].find("../").map(|i| from + i) {
+        let start = line[..at].rfind(stop).map_or(0, |i| i + 1);
+        let end = line[at..].find(stop).map_or(line.len(), |i| at + i);
+        out.push((start, &line[start..end]));
+        from = end.max(at + 3);
+    }
+    out
+}
+
+/// Whether `path` (relative, maybe led by a `{}` placeholder or a `/` joined onto its base)
+/// climbs above the root when resolved against `base`.
+fn escapes(base: &Path, path: &str) -> bool {
+    let path = path.trim_start_matches("{}").trim_start_matches('/');
+    let mut depth = base.strip_prefix(root()).expect("a base inside the root").components().count() as i64;
+    for part in Path::new(path).components() {
+        match part {
+            Component::ParentDir => depth -= 1,
+            Component::Normal(_) => depth += 1,
+            _ => {}
+        }
+        if depth < 0 {
+            return true;
+        }
+    }
+    false
+}
+
+#[test]
+fn nothing_names_a_path_above_the_repository_root() {
+    let mut found = Vec::new();
+    for (file, text) in text_files() {
+        for (n, line) in text.lines().enumerate() {
+            for (start, path) in climbing_paths(line) {
+                if escapes(&base_of(&file, line, start), path) {
+                    found.push(format!("{file}:{}: '{path}' reaches above the repository root", n + 1));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "the repository must stand alone:\n{}", found.join("\n"));
+}
+
+#[test]
+fn the_path_check_catches_what_it_is_for() {
+    let root = root();
+    let crate_dir = root.join("engine/scene");
+    // The paths the conformance tests once read, from a crate two levels down and from docs.
+    assert!(escapes(&crate_dir, "/../../../shared/testdata/khronos/Box.gltf"));
+    assert!(escapes(&root.join("game"), "{}/../../shared/testdata/khronos/{file}"));
+    assert!(escapes(&root, "../shared/DESIGN.md"));
+    assert!(!escapes(&crate_dir, "/../../levels/cellar"));
+    assert!(!escapes(&root.join("engine/src/passes"), "../../../shaders/composite.wgsl"));
+    assert!(!escapes(&root.join("docs"), "../levels/cellar/preview.png"));
+    let line = r#"const BOX: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/Box.gltf");"#;
+    let paths = climbing_paths(line);
+    assert_eq!(paths.iter().map(|p| p.1).collect::<Vec<_>>(), ["/../../../shared/Box.gltf"]);
+    assert_eq!(base_of("engine/scene/tests/x.rs", line, paths[0].0), crate_dir);
+    let md = "see [modding](../MODDING.md) and `../shared/DESIGN.md`";
+    let paths = climbing_paths(md);
+    assert_eq!(base_of("docs/x.md", md, paths[0].0), root.join("docs"));
+    assert_eq!(base_of("docs/x.md", md, paths[1].0), root);
+}
+
+/// The source of every test: files under a `tests/` folder and `tests.rs` modules whole, and in
+/// other sources what follows `#[cfg(test)]`; as (file, text, the line the test code starts on).
+fn test_sources() -> Vec<(String, String, usize)> {
+    text_files()
+        .into_iter()
+        .filter(|(file, _)| file.ends_with(".rs"))
+        .filter_map(|(file, text)| {
+            let whole = file.starts_with("tests/") || file.contains("/tests/") || file.ends_with("/tests.rs");
+            let first = if whole { 0 } else { text.lines().position(|l| l.contains("#[cfg(test)]"))? };
+            Some((file, text, first))
+        })
+        .collect()
+}
+
+#[test]
+fn no_test_reads_the_environment() {
+    // (Spelt in two halves so that this file does not find itself.)
+    let reads = [concat!("env::", "var"), concat!("option_", "env!")];
+    let sources = test_sources();
+    assert!(sources.iter().any(|(f, ..)| f == "tests/level_frames.rs"), "the scan sees the frame tests");
+    let mut found = Vec::new();
+    for (file, text, first) in sources {
+        for (n, line) in text.lines().enumerate().skip(first) {
+            if reads.iter().any(|r| line.contains(r)) {
+                found.push(format!("{file}:{}: {}", n + 1, line.trim()));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "tests must not read the environment (an argument, a constant or a binary instead):\n{}",
+        found.join("\n")
+    );
+}
