@@ -110,11 +110,15 @@ unsafe impl GlobalAlloc for CountingAlloc {
 
 type Reader = dyn Fn(&[u8]) -> Result<(), String> + Send;
 
+/// What the worker sends back for an input: the reader's result (`Err` if it panicked), and the
+/// most bytes its thread held.
+type Finished = (Result<Result<(), String>, ()>, isize);
+
 /// Runs inputs one at a time on a worker thread, each under [`Limits`].
 pub struct BoundedRunner {
     limits: Limits,
     inputs: Sender<(PathBuf, Vec<u8>)>,
-    outcomes: Receiver<(Result<Result<(), String>, ()>, isize)>,
+    outcomes: Receiver<Finished>,
 }
 
 impl BoundedRunner {
