@@ -5,6 +5,8 @@
 //! crate's loader tests and the game's command-line tests use it; it must not depend on `scene`
 //! (which dev-depends on it), hence its own base64 encoder.
 
+mod samples;
 mod writer;
 
+pub use samples::*;
 pub use writer::*;
