@@ -6,13 +6,25 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 
 use glam::Vec3;
+use gltf_conformance::{Bin, SAMPLES};
+use serde_json::json;
 
 mod common;
 
 use common::{headlamp, scratch};
 
-fn khronos(file: &str) -> String {
-    format!("{}/../../shared/testdata/khronos/{file}", env!("CARGO_MANIFEST_DIR"))
+/// Writes the conformance sample `file` (a name in `gltf_conformance::SAMPLES`) into `dir`.
+fn sample(dir: &Path, file: &str) -> PathBuf {
+    let (_, doc) = SAMPLES.iter().find(|(name, _)| *name == file).expect("a sample of that name");
+    gltf_conformance::write(dir, file, &doc())
+}
+
+/// Renders `level` from its own view (its first camera, else one framing it) to a 96×96 PNG.
+fn render_png(level: &Path, png: &Path) -> image::RgbImage {
+    let out =
+        headlamp(&["render", "--level", level.to_str().unwrap(), "--out", png.to_str().unwrap(), "--size", "96x96"]);
+    assert_ok(&out);
+    image::open(png).unwrap().into_rgb8()
 }
 
 fn assert_ok(out: &Output) {
@@ -22,21 +34,17 @@ fn assert_ok(out: &Output) {
 /// A 40 m quad in the plane z = `z` facing +Z, albedo `rho`, as a base64-embedded glTF.
 fn write_plane_gltf(path: &Path, z: f32, rho: f32) {
     let s = 20.0f32;
-    let positions: [[f32; 3]; 4] = [[-s, -s, z], [s, -s, z], [s, s, z], [-s, s, z]];
-    let mut bytes: Vec<u8> = positions.iter().flatten().flat_map(|v| v.to_le_bytes()).collect();
-    bytes.extend([0u16, 1, 2, 0, 2, 3].iter().flat_map(|i| i.to_le_bytes()));
-    let b64 = base64(&bytes);
-    let json = format!(
-        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
-        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1,"material":0}}]}}],
-        "materials":[{{"pbrMetallicRoughness":{{"baseColorFactor":[{rho},{rho},{rho},1.0],"metallicFactor":0.0}}}}],
-        "buffers":[{{"byteLength":{len},"uri":"data:application/octet-stream;base64,{b64}"}}],
-        "bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":48}},{{"buffer":0,"byteOffset":48,"byteLength":12}}],
-        "accessors":[{{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-{s},-{s},{z}],"max":[{s},{s},{z}]}},
-                     {{"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}}]}}"#,
-        len = bytes.len()
-    );
-    std::fs::write(path, json).unwrap();
+    let mut bin = Bin::default();
+    let positions = bin.vec3(&[[-s, -s, z], [s, -s, z], [s, s, z], [-s, s, z]]);
+    let indices = bin.u16s(&[0, 1, 2, 0, 2, 3]);
+    let doc = bin.gltf(json!({
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": positions}, "indices": indices, "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [rho, rho, rho, 1.0], "metallicFactor": 0.0}}],
+    }));
+    std::fs::write(path, serde_json::to_vec(&doc).unwrap()).unwrap();
 }
 
 /// glTF's BRDF for a rough dielectric (metallic 0, roughness 1: D = 1/π, V = 1/(2(n·l + n·v)))
@@ -44,23 +52,6 @@ fn write_plane_gltf(path: &Path, z: f32, rho: f32) {
 fn rough_dielectric(rho: f32, n_l: f32, n_v: f32, v_h: f32) -> f32 {
     let fresnel = 0.04 + 0.96 * (1.0 - v_h).powi(5);
     (1.0 - fresnel) * rho / PI + fresnel / PI * 0.5 / (n_l + n_v)
-}
-
-fn base64(data: &[u8]) -> String {
-    const T: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for chunk in data.chunks(3) {
-        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
-        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for i in 0..4 {
-            if i <= chunk.len() {
-                out.push(T[(n >> (18 - 6 * i) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
 }
 
 #[test]
@@ -134,16 +125,48 @@ fn a_lamp_put_down_with_lamp_keeps_the_radiometry() {
 }
 
 #[test]
-fn renders_the_khronos_conformance_files_from_their_own_cameras() {
-    let dir = scratch("khronos");
-    for file in ["Box.gltf", "Cameras.gltf"] {
+fn renders_the_conformance_boxes_and_cameras_in_view_and_lit() {
+    let dir = scratch("conformance");
+    // The box has no camera (the view frames it); the cameras sample is seen from its first.
+    for file in ["red_box.gltf", "cameras.gltf"] {
         let png = dir.join(file.replace(".gltf", ".png"));
-        let out = headlamp(&["render", "--level", &khronos(file), "--out", png.to_str().unwrap(), "--size", "96x96"]);
-        assert_ok(&out);
-        let img = image::open(&png).unwrap().into_rgba8();
+        let img = render_png(&sample(&dir, file), &png);
         let lit = img.pixels().filter(|p| p[0] > 10 || p[1] > 10 || p[2] > 10).count();
         assert!(lit > 96 * 96 / 20, "{file}: only {lit} lit pixels — the model is not in view or unlit");
     }
+}
+
+#[test]
+fn a_textured_quad_seen_from_its_camera_is_upright() {
+    let dir = scratch("texcoords");
+    let img = render_png(&sample(&dir, "texture_coordinates.gltf"), &dir.join("texcoords.png"));
+    // The quad fills the middle half of the frame (pixels 24 to 72 each way); the mean of an
+    // 8×8 block at the middle of each quarter of it.
+    let block = |cx: u32, cy: u32| {
+        let mut sum = [0u32; 3];
+        for y in cy - 4..cy + 4 {
+            for x in cx - 4..cx + 4 {
+                for (s, v) in sum.iter_mut().zip(img.get_pixel(x, y).0) {
+                    *s += u32::from(v);
+                }
+            }
+        }
+        sum.map(|s| s / 64)
+    };
+    // The image's top-left is red, top-right green, bottom-left blue, bottom-right white.
+    let dominant = |[r, g, b]: [u32; 3], channel: usize| {
+        let c = [r, g, b][channel];
+        c > 20 && (0..3).filter(|&k| k != channel).all(|k| c > 3 * [r, g, b][k])
+    };
+    let (top_left, top_right, bottom_left, bottom_right) = (block(36, 36), block(60, 36), block(36, 60), block(60, 60));
+    assert!(dominant(top_left, 0), "top-left {top_left:?} is not red");
+    assert!(dominant(top_right, 1), "top-right {top_right:?} is not green");
+    assert!(dominant(bottom_left, 2), "bottom-left {bottom_left:?} is not blue");
+    let [r, g, b] = bottom_right;
+    assert!(
+        r.min(g).min(b) > 20 && r.max(g).max(b) < 2 * r.min(g).min(b),
+        "bottom-right {bottom_right:?} is not white"
+    );
 }
 
 #[test]
@@ -197,24 +220,22 @@ fn bad_input_gives_one_clear_line() {
     let unknown = dir.join("scene.xyz");
     std::fs::write(&unknown, "hello").unwrap();
     assert_one_line_error(&["render", "--level", unknown.to_str().unwrap(), "--out", out], &["scene.xyz"]);
-    let good = khronos("Box.gltf");
-    assert_one_line_error(&["render", "--level", &good, "--out", out, "--size", "big"], &["big"]);
-    assert_one_line_error(&["render", "--level", &good, "--out", out, "--camera", "1,2:3"], &["1,2:3"]);
+    let red_box = sample(&dir, "red_box.gltf");
+    let good = red_box.to_str().unwrap();
+    assert_one_line_error(&["render", "--level", good, "--out", out, "--size", "big"], &["big"]);
+    assert_one_line_error(&["render", "--level", good, "--out", out, "--camera", "1,2:3"], &["1,2:3"]);
     assert_one_line_error(
-        &["render", "--level", &good, "--out", out, "--lamp", "1,2,x:3,4,5"],
+        &["render", "--level", good, "--out", out, "--lamp", "1,2,x:3,4,5"],
         &["--lamp", "1,2,x:3,4,5"],
     );
     assert_one_line_error(
-        &["render", "--level", &good, "--out", out, "--lamp", "1,1,1:1,1,1"],
+        &["render", "--level", good, "--out", out, "--lamp", "1,1,1:1,1,1"],
         &["--lamp", "same point"],
     );
-    assert_one_line_error(&["render", "--level", &good, "--out", "x.bmp"], &["x.bmp"]);
-    assert_one_line_error(&["render", "--level", &good, "--out", out, "--view", "sideways"], &["sideways"]);
-    assert_one_line_error(&["render", "--level", &good, "--out", out, "--bogus"], &["--bogus"]);
-    assert_one_line_error(
-        &["render", "--level", &good, "--out", "/nonexistent-dir/x.png"],
-        &["/nonexistent-dir/x.png"],
-    );
+    assert_one_line_error(&["render", "--level", good, "--out", "x.bmp"], &["x.bmp"]);
+    assert_one_line_error(&["render", "--level", good, "--out", out, "--view", "sideways"], &["sideways"]);
+    assert_one_line_error(&["render", "--level", good, "--out", out, "--bogus"], &["--bogus"]);
+    assert_one_line_error(&["render", "--level", good, "--out", "/nonexistent-dir/x.png"], &["/nonexistent-dir/x.png"]);
 }
 
 /// A Cornell box (open towards +Z) as OBJ + MTL, written the way a modelling tool would.
@@ -275,16 +296,17 @@ fn bad_gi_flags_give_one_clear_line() {
     let dir = scratch("badgi");
     let out = dir.join("x.png");
     let out = out.to_str().unwrap();
-    let good = khronos("Box.gltf");
+    let red_box = sample(&dir, "red_box.gltf");
+    let good = red_box.to_str().unwrap();
     assert_one_line_error(
-        &["render", "--level", &good, "--out", out, "--set", "gi.split_ratio=lots"],
+        &["render", "--level", good, "--out", out, "--set", "gi.split_ratio=lots"],
         &["gi.split_ratio", "lots"],
     );
     assert_one_line_error(
-        &["render", "--level", &good, "--out", out, "--set", "gi.bounces=9"],
+        &["render", "--level", good, "--out", out, "--set", "gi.bounces=9"],
         &["gi.bounces", "out of range"],
     );
-    assert_one_line_error(&["render", "--level", &good, "--out", out, "--set", "gi.colour=1"], &["gi.colour"]);
-    assert_one_line_error(&["render", "--level", &good, "--out", out, "--set", "budget=1"], &["budget"]);
-    assert_one_line_error(&["render", "--level", &good, "--out", out, "--gi", "maybe"], &["maybe"]);
+    assert_one_line_error(&["render", "--level", good, "--out", out, "--set", "gi.colour=1"], &["gi.colour"]);
+    assert_one_line_error(&["render", "--level", good, "--out", out, "--set", "budget=1"], &["budget"]);
+    assert_one_line_error(&["render", "--level", good, "--out", out, "--gi", "maybe"], &["maybe"]);
 }
