@@ -117,7 +117,8 @@ fn escapes(base: &Path, path: &str) -> bool {
 #[test]
 fn nothing_names_a_path_above_the_repository_root() {
     let mut found = Vec::new();
-    for (file, text) in text_files() {
+    // This file names such paths on purpose, to show the check catches them.
+    for (file, text) in text_files().into_iter().filter(|(file, _)| file != "tests/repository.rs") {
         for (n, line) in text.lines().enumerate() {
             for (start, path) in climbing_paths(line) {
                 if escapes(&base_of(&file, line, start), path) {
@@ -150,18 +151,43 @@ fn the_path_check_catches_what_it_is_for() {
     assert_eq!(base_of("docs/x.md", md, paths[1].0), root);
 }
 
-/// The source of every test: files under a `tests/` folder and `tests.rs` modules whole, and in
-/// other sources what follows `#[cfg(test)]`; as (file, text, the line the test code starts on).
-fn test_sources() -> Vec<(String, String, usize)> {
+/// The source of every test, as (file, its lines that are test code): files under a `tests/`
+/// folder and `tests.rs` modules whole, and in other sources each inline `#[cfg(test)]` module.
+fn test_sources() -> Vec<(String, Vec<(usize, String)>)> {
     text_files()
         .into_iter()
         .filter(|(file, _)| file.ends_with(".rs"))
-        .filter_map(|(file, text)| {
+        .map(|(file, text)| {
+            let lines: Vec<(usize, String)> = text.lines().map(String::from).enumerate().collect();
             let whole = file.starts_with("tests/") || file.contains("/tests/") || file.ends_with("/tests.rs");
-            let first = if whole { 0 } else { text.lines().position(|l| l.contains("#[cfg(test)]"))? };
-            Some((file, text, first))
+            let test_lines = if whole { lines } else { inline_test_modules(&lines) };
+            (file, test_lines)
         })
         .collect()
+}
+
+/// The lines of each `#[cfg(test)] mod NAME { … }` (to its closing brace); a `mod NAME;` names a
+/// file the scan reads on its own.
+fn inline_test_modules(lines: &[(usize, String)]) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    let mut at = 0;
+    while let Some(start) = lines[at..].iter().position(|(_, l)| l.trim() == "#[cfg(test)]").map(|i| at + i) {
+        let opens = lines.get(start + 1).is_some_and(|(_, l)| l.trim_start().starts_with("mod ") && l.contains('{'));
+        at = start + 1;
+        if !opens {
+            continue;
+        }
+        let mut depth = 0i64;
+        for (n, line) in &lines[start + 1..] {
+            depth += line.matches('{').count() as i64 - line.matches('}').count() as i64;
+            out.push((*n, line.clone()));
+            at = n + 1;
+            if depth <= 0 {
+                break;
+            }
+        }
+    }
+    out
 }
 
 #[test]
@@ -169,10 +195,12 @@ fn no_test_reads_the_environment() {
     // (Spelt in two halves so that this file does not find itself.)
     let reads = [concat!("env::", "var"), concat!("option_", "env!")];
     let sources = test_sources();
-    assert!(sources.iter().any(|(f, ..)| f == "tests/level_frames.rs"), "the scan sees the frame tests");
+    let scanned = |file: &str| sources.iter().any(|(f, lines)| f == file && !lines.is_empty());
+    assert!(scanned("tests/level_frames.rs") && scanned("game/src/golden.rs"), "the scan sees the tests");
+    assert!(!scanned("game/ui/src/config.rs"), "only test modules are scanned");
     let mut found = Vec::new();
-    for (file, text, first) in sources {
-        for (n, line) in text.lines().enumerate().skip(first) {
+    for (file, lines) in &sources {
+        for (n, line) in lines {
             if reads.iter().any(|r| line.contains(r)) {
                 found.push(format!("{file}:{}: {}", n + 1, line.trim()));
             }
