@@ -173,16 +173,14 @@ pub enum Seed {
     /// Any other file: mutated as bytes.
     Bytes(Vec<u8>),
     /// A glTF document whose buffer and images are given apart: `doc`'s `uri`s hold the
-    /// placeholders [`buffer_placeholder`] and [`image_placeholder`], filled in with base64
+    /// placeholders [`BUFFER_PLACEHOLDER`] and [`image_placeholder`], filled in with base64
     /// `data:` URIs when encoded (a GLB's buffer, with no uri, becomes its BIN chunk).
     Gltf { doc: String, bin: Vec<u8>, images: Vec<Vec<u8>>, glb: bool },
     /// A replay's bytes before its checksum, sealed when encoded.
     Replay(Vec<u8>),
 }
 
-fn buffer_placeholder() -> &'static str {
-    "@BUFFER@"
-}
+const BUFFER_PLACEHOLDER: &str = "@BUFFER@";
 
 fn image_placeholder(i: usize) -> String {
     format!("@IMAGE{i}@")
@@ -208,14 +206,13 @@ fn encode_gltf(doc: &str, bin: &[u8], images: &[Vec<u8>], glb: bool) -> Vec<u8> 
         return scene::pack_glb(doc.as_bytes(), bin);
     }
     let uri = format!("data:application/octet-stream;base64,{}", scene::encode_base64(bin));
-    doc.replace(buffer_placeholder(), &uri).into_bytes()
+    doc.replace(BUFFER_PLACEHOLDER, &uri).into_bytes()
 }
 
 /// A replay's body followed by its checksum, as `ReplayWriter` writes it.
 fn seal(mut body: Vec<u8>) -> Vec<u8> {
-    let mut h = scene::Fnv1a::default();
-    h.write(&body);
-    body.extend_from_slice(&h.finish().to_le_bytes());
+    let sum = engine::replay::checksum(&body);
+    body.extend_from_slice(&sum.to_le_bytes());
     body
 }
 
@@ -290,7 +287,7 @@ fn split_gltf(level: &Path, glb: bool) -> Seed {
         // A GLB's buffer is its BIN chunk: the buffer without a uri.
         buffer.as_object_mut().expect("a buffer object").remove("uri");
     } else {
-        buffer["uri"] = buffer_placeholder().into();
+        buffer["uri"] = BUFFER_PLACEHOLDER.into();
     }
     Seed::Gltf { doc: serde_json::to_string(&doc).expect("JSON"), bin, images, glb }
 }

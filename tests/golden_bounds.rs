@@ -2,7 +2,7 @@
 //! check: changes a player sees in a real golden fail, every golden shows something, every
 //! golden belongs to a shot, and the variable that once re-made goldens changes nothing.
 
-use game::golden::{mean_luminance, Difference};
+use game::golden::{mean_luminance, srgb_to_linear, Difference};
 use headlamp_tests::frames::{golden_names, SIZE};
 use headlamp_tests::{check_golden, golden_path, goldens_dir};
 
@@ -14,14 +14,6 @@ fn golden(name: &str) -> image::RgbaImage {
 /// `img` with its light scaled by `scale` in `region` (x, y, width, height): the sRGB pixels
 /// decoded, scaled and encoded again.
 fn scaled(img: &image::RgbaImage, scale: f64, region: (u32, u32, u32, u32)) -> image::RgbaImage {
-    let to_linear = |c: u8| {
-        let c = c as f64 / 255.0;
-        if c <= 0.04045 {
-            c / 12.92
-        } else {
-            ((c + 0.055) / 1.055).powf(2.4)
-        }
-    };
     let to_srgb = |l: f64| {
         let l = l.clamp(0.0, 1.0);
         let c = if l <= 0.0031308 { 12.92 * l } else { 1.055 * l.powf(1.0 / 2.4) - 0.055 };
@@ -33,7 +25,7 @@ fn scaled(img: &image::RgbaImage, scale: f64, region: (u32, u32, u32, u32)) -> i
         for x in x0..x0 + w {
             let p = out.get_pixel_mut(x, y);
             for c in 0..3 {
-                p[c] = to_srgb(to_linear(p[c]) * scale);
+                p[c] = to_srgb(srgb_to_linear(p[c]) * scale);
             }
         }
     }

@@ -94,17 +94,22 @@ fn percentile(mut values: Vec<f32>, p: f64) -> f32 {
     *values.select_nth_unstable_by(rank, f32::total_cmp).1
 }
 
+/// An 8-bit sRGB-encoded value decoded to linear, 0…1.
+pub fn srgb_to_linear(c: u8) -> f64 {
+    let c = c as f64 / 255.0;
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
 /// Mean relative luminance (Rec. 709, linear: the sRGB-encoded pixels decoded), 0…1.
 pub fn mean_luminance(img: &image::RgbaImage) -> f64 {
-    let linear = |c: u8| {
-        let c = c as f64 / 255.0;
-        if c <= 0.04045 {
-            c / 12.92
-        } else {
-            ((c + 0.055) / 1.055).powf(2.4)
-        }
-    };
-    let sum: f64 = img.pixels().map(|p| 0.2126 * linear(p[0]) + 0.7152 * linear(p[1]) + 0.0722 * linear(p[2])).sum();
+    let sum: f64 = img
+        .pixels()
+        .map(|p| 0.2126 * srgb_to_linear(p[0]) + 0.7152 * srgb_to_linear(p[1]) + 0.0722 * srgb_to_linear(p[2]))
+        .sum();
     sum / (img.width() as f64 * img.height() as f64).max(1.0)
 }
 

@@ -57,7 +57,8 @@ impl ReplayHeader {
     }
 }
 
-fn checksum(bytes: &[u8]) -> u64 {
+/// The checksum that ends a replay file: FNV-1a 64 of every byte before it.
+pub fn checksum(bytes: &[u8]) -> u64 {
     let mut h = scene::Fnv1a::default();
     h.write(bytes);
     h.finish()
