@@ -1,53 +1,45 @@
 //! The few global variables of the technique (the article keeps them deliberately few).
-//! Serde-able for config files, settable by name for `--set gi.NAME=VALUE`, and described by
-//! [`GiSettings::FIELDS`] so a UI can show sliders without knowing the struct.
+//! Each is declared once, in the list below, which gives the struct (serde-able for config
+//! files), `--set gi.NAME=VALUE` by name, [`GiSettings::FIELDS`] (so a UI can show sliders and a
+//! config file comments without knowing the struct) and the table in `docs/gi.md`.
+
+mod declare;
 
 use engine::graph::SizeRule;
 use serde::{Deserialize, Serialize};
 
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct GiSettings {
-    /// Indirect light on or off (`--gi off`); off leaves the direct-lit renderer.
-    pub enabled: bool,
-    /// Children merge only if their normals are within this angle (degrees) of their mean.
-    pub merge_normal_deg: f32,
-    /// …and their positions within this fraction of their distance from the lamp.
-    pub merge_distance: f32,
-    /// A reflection light is split into its four children while its size exceeds this
-    /// fraction of its distance to the receivers it lights: smaller is more exact and slower.
-    pub split_ratio: f32,
-    /// Light bounces: 1 is the article's one bounce; 2–3 feed the indirect light back as flux.
-    pub bounces: u32,
-    /// Size of the indirect-light target relative to the view.
-    pub resolution_scale: f32,
-    /// 2: the receivers of each 2×2 share the evaluation of their tile's lights (each evaluates
-    /// a quarter and borrows the rest from neighbours on its surface): about 4× faster on
-    /// smooth surfaces. 1: every receiver evaluates every light. (A 4×4 pattern was tried: its
-    /// wider reconstruction cost more than it saved, and the error grew.)
-    pub interleave: u32,
-    /// The fewest rows of receivers the indirect target has, whatever `resolution_scale` says
-    /// (fewer only when the view has fewer): the light's variation across a room needs about
-    /// this many. Lower is faster and blurrier; the CPU preset uses 45.
-    pub min_rows: u32,
-}
-
-impl Default for GiSettings {
-    fn default() -> Self {
-        Self {
-            enabled: true,
-            merge_normal_deg: 25.0,
-            merge_distance: 0.15,
-            split_ratio: 0.45,
-            bounces: 1,
-            resolution_scale: 0.125,
-            interleave: 2,
-            min_rows: 90,
-        }
+// One entry a setting: `name: type = default, min..=max, "one line"`, the line being what the
+// F1 panel, config.toml and docs/gi.md say of it (`declare.rs` tells the rest). Replay headers
+// and config files are written in this order: add at the end.
+declare::settings! {
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(default, deny_unknown_fields)]
+    pub struct GiSettings {
+        /// `--gi off` on the command line; off leaves the direct-lit renderer.
+        enabled: bool = true, "indirect light on or off";
+        /// Children merge only if their normals are within this angle (degrees) of their mean.
+        merge_normal_deg: f32 = 25.0, 0.0..=90.0, "max normal deviation (degrees) for texels to merge";
+        /// …and their positions within this fraction of their distance from the lamp.
+        merge_distance: f32 = 0.15, 0.0..=2.0, "max position deviation, as a fraction of distance to the lamp";
+        /// A reflection light is split into its four children while its size exceeds this
+        /// fraction of its distance to the receivers it lights: smaller is more exact and slower.
+        split_ratio: f32 = 0.45, 0.05..=4.0, "split a light while its size exceeds this fraction of its distance";
+        /// 1 is the article's one bounce; 2–3 feed the indirect light back as flux.
+        bounces: u32 = 1, 1..=3, "number of light bounces";
+        /// At least `min_rows` rows, whatever this says.
+        resolution_scale: f32 = 0.125, 0.0625..=1.0, "indirect target size relative to the view";
+        /// 2: the receivers of each 2×2 share the evaluation of their tile's lights (each
+        /// evaluates a quarter and borrows the rest from neighbours on its surface): about 4×
+        /// faster on smooth surfaces. 1: every receiver evaluates every light. (A 4×4 pattern
+        /// was tried: its wider reconstruction cost more than it saved, and the error grew.)
+        interleave: u32 = 2, 1..=2, "2: neighbours share the evaluation of lights (faster); 1: each does all";
+        /// Fewer only when the view has fewer: the light's variation across a room needs about
+        /// this many. Lower is faster and blurrier; the CPU preset uses 45.
+        min_rows: u32 = 90, 16..=360, "fewest rows of the indirect target, whatever the scale";
     }
 }
 
-/// What a settings UI or the command line needs to know about one field.
+/// What a settings UI or the command line needs to know about one numeric setting.
 #[derive(Clone, Copy, Debug)]
 pub struct FieldInfo {
     pub name: &'static str,
@@ -57,40 +49,11 @@ pub struct FieldInfo {
     pub help: &'static str,
 }
 
-const fn field(name: &'static str, min: f64, max: f64, integer: bool, help: &'static str) -> FieldInfo {
-    FieldInfo { name, min, max, integer, help }
-}
-
 /// Settings of the light-volume GI (before the pyramid gather) that older replays and config
 /// files still name: accepted and ignored.
 pub const RETIRED: &[&str] = &["light_budget", "cutoff", "d_min"];
 
 impl GiSettings {
-    /// The numeric fields, their valid ranges and meaning (`enabled` is the on/off switch).
-    pub const FIELDS: &'static [FieldInfo] = &[
-        field("merge_normal_deg", 0.0, 90.0, false, "max normal deviation (degrees) for texels to merge"),
-        field("merge_distance", 0.0, 2.0, false, "max position deviation, as a fraction of distance to the lamp"),
-        field("split_ratio", 0.05, 4.0, false, "split a light while its size exceeds this fraction of its distance"),
-        field("bounces", 1.0, 3.0, true, "number of light bounces"),
-        field("resolution_scale", 0.0625, 1.0, false, "indirect target size relative to the view"),
-        field("interleave", 1.0, 2.0, true, "2: neighbours share the evaluation of lights (faster); 1: each does all"),
-        field("min_rows", 16.0, 360.0, true, "fewest rows of the indirect target, whatever the scale"),
-    ];
-
-    /// The value of a numeric field by name.
-    pub fn get(&self, name: &str) -> Option<f64> {
-        Some(match name {
-            "merge_normal_deg" => self.merge_normal_deg as f64,
-            "merge_distance" => self.merge_distance as f64,
-            "split_ratio" => self.split_ratio as f64,
-            "bounces" => self.bounces as f64,
-            "resolution_scale" => self.resolution_scale as f64,
-            "interleave" => self.interleave as f64,
-            "min_rows" => self.min_rows as f64,
-            _ => return None,
-        })
-    }
-
     /// Sets a field from text, as `--set gi.NAME=VALUE` does; the error says what is wrong.
     pub fn set(&mut self, name: &str, value: &str) -> Result<(), String> {
         if name == "enabled" {
@@ -118,22 +81,6 @@ impl GiSettings {
         Ok(())
     }
 
-    /// Sets a numeric field, clamped to its range (for sliders).
-    pub fn set_number(&mut self, name: &str, v: f64) {
-        let Some(info) = Self::FIELDS.iter().find(|f| f.name == name) else { return };
-        let v = v.clamp(info.min, info.max);
-        match name {
-            "merge_normal_deg" => self.merge_normal_deg = v as f32,
-            "merge_distance" => self.merge_distance = v as f32,
-            "split_ratio" => self.split_ratio = v as f32,
-            "bounces" => self.bounces = v.round() as u32,
-            "resolution_scale" => self.resolution_scale = v as f32,
-            "interleave" => self.interleave = v.round() as u32,
-            "min_rows" => self.min_rows = v.round() as u32,
-            _ => {}
-        }
-    }
-
     /// The indirect target's size rule: `resolution_scale` of the view, but at least
     /// `min_rows` pixels high, as the light's variation across a room needs that many
     /// receivers whatever the output size.
@@ -145,6 +92,22 @@ impl GiSettings {
     /// the Cellar plays at 15 fps or more with the GI on (with the game's CPU render scale).
     pub fn cpu_preset() -> Self {
         Self { min_rows: 45, ..Self::default() }
+    }
+
+    /// The table of settings in `docs/gi.md` (a test holds the file to it): name, default,
+    /// range and meaning, in the list's order.
+    pub fn markdown_table() -> String {
+        let defaults = Self::default();
+        let on_off = |on: bool| if on { "on" } else { "off" };
+        let mut table = String::from("| setting | default | range | meaning |\n| --- | --- | --- | --- |\n");
+        table += &format!("| `gi.enabled` | {} | on, off | {} |\n", on_off(defaults.enabled), Self::ENABLED_HELP);
+        for f in Self::FIELDS {
+            let v = defaults.get(f.name).expect("every entry of FIELDS has a value");
+            // As the setting's own type prints it: 0.15, not the f64 of an f32 (0.15000000596…).
+            let default = if f.integer { (v as i64).to_string() } else { (v as f32).to_string() };
+            table += &format!("| `gi.{}` | {default} | {} to {} | {} |\n", f.name, f.min, f.max, f.help);
+        }
+        table
     }
 }
 
@@ -190,6 +153,55 @@ mod tests {
         let text = toml::to_string(&s).unwrap();
         assert_eq!(toml::from_str::<GiSettings>(&text).unwrap(), s);
         assert!(toml::from_str::<GiSettings>("lite_budget = 3").is_err());
+    }
+
+    #[test]
+    fn the_list_gives_every_field_its_access_by_name() {
+        let mut s = GiSettings::default();
+        let names: Vec<&str> = GiSettings::FIELDS.iter().map(|f| f.name).collect();
+        // The list's order, which replays and config files follow.
+        let order = [
+            "merge_normal_deg",
+            "merge_distance",
+            "split_ratio",
+            "bounces",
+            "resolution_scale",
+            "interleave",
+            "min_rows",
+        ];
+        assert_eq!(names, order);
+        assert_eq!(GiSettings::FIELDS.iter().filter(|f| f.integer).count(), 3, "bounces, interleave, min_rows");
+        // Compared as f32: an f32 setting holds the f64 bound to f32 precision.
+        let get = |s: &GiSettings, name| s.get(name).map(|v| v as f32);
+        for f in GiSettings::FIELDS {
+            s.set_number(f.name, f.max + 1.0);
+            assert_eq!(get(&s, f.name), Some(f.max as f32), "{} clamps to its top", f.name);
+            s.set_number(f.name, f.min);
+            assert_eq!(get(&s, f.name), Some(f.min as f32), "{} reaches its bottom", f.name);
+        }
+        s.set_number("bounces", 2.4);
+        assert_eq!(s.bounces, 2, "whole-number settings round");
+        assert_eq!(s.get("enabled"), None, "the switch is not a number");
+        assert_eq!(GiSettings::default().get("min_rows"), Some(90.0));
+    }
+
+    #[test]
+    fn the_settings_table_in_the_docs_is_the_list() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/gi.md");
+        let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+        let expected = GiSettings::markdown_table();
+        // The table is the run of `|` lines that starts with the header row.
+        let header = expected.lines().next().unwrap();
+        let found: String = text
+            .lines()
+            .skip_while(|l| *l != header)
+            .take_while(|l| l.starts_with('|'))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        assert!(
+            found == expected,
+            "docs/gi.md's settings table is not GiSettings::markdown_table(); put this there:\n\n{expected}"
+        );
     }
 
     #[test]

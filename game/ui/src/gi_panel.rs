@@ -17,7 +17,7 @@ const LOGARITHMIC: &[&str] = &["split_ratio"];
 /// field's help) and a reset button. Returns whether anything changed.
 pub fn sliders(ui: &mut egui::Ui, s: &mut GiSettings) -> bool {
     let before = s.clone();
-    ui.checkbox(&mut s.enabled, "enabled").on_hover_text("indirect light on or off");
+    ui.checkbox(&mut s.enabled, "enabled").on_hover_text(GiSettings::ENABLED_HELP);
     for field in GiSettings::FIELDS {
         let slider = egui::Slider::from_get_set(field.min..=field.max, |v| slider_value(s, field, v))
             .text(field.name)
