@@ -5,7 +5,9 @@
 //! default, so a file from an older version still loads). A bad file is never lost:
 //! [`Config::load_or_default`] copies it aside before the game can save over it.
 
+mod declare;
 mod format;
+mod sections;
 #[cfg(test)]
 mod tests;
 
@@ -13,7 +15,6 @@ use std::ffi::OsString;
 use std::fmt;
 use std::fs;
 use std::io::Write;
-use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
 use plugin_gi::GiSettings;
@@ -21,70 +22,68 @@ use plugin_gi::GiSettings;
 use crate::bindings::KeyBindings;
 use crate::pad_bindings::GamepadSettings;
 
-#[derive(Clone, Debug, PartialEq)]
-pub struct Config {
-    /// Mouse look speed as a multiplier: 1.0 = [`Config::BASE_RADIANS_PER_PIXEL`].
-    pub mouse_sensitivity: f32,
-    /// Moving the mouse forward looks down.
-    pub invert_y: bool,
-    /// Vertical field of view, degrees, in [`Config::FOV_RANGE`].
-    pub fov_deg: f32,
-    /// The 3D view's resolution relative to the window, in [`Config::RENDER_SCALE_RANGE`].
-    pub render_scale: f32,
-    /// Lower the render scale (down to 25 %, up to `render_scale`) to hold `target_fps`.
-    pub dynamic_resolution: bool,
-    /// The frame rate dynamic resolution holds, in [`Config::TARGET_FPS_RANGE`].
-    pub target_fps: f32,
-    pub vsync: bool,
-    /// The frame-rate counter in a corner.
-    pub show_fps: bool,
-    pub bindings: KeyBindings,
-    /// The gamepad's buttons, look speed and dead zone (look follows `invert_y` too).
-    pub gamepad: GamepadSettings,
-    pub gi: GiSettings,
-    /// Picture brightness in stops (exposure × 2^brightness), in [`Config::BRIGHTNESS_RANGE`].
-    pub brightness: f32,
-    /// The brightness calibration screen has been through (it opens on a first start).
-    pub calibrated: bool,
-    /// Tames what flashes: the low-battery flicker and the muzzle flash.
-    pub reduce_flashing: bool,
-    /// Writes what is heard and matters (a crawler noticing you: where, and if out of sight).
-    pub captions: bool,
-    /// Size of the HUD (the menus keep theirs), in [`Config::HUD_SCALE_RANGE`].
-    pub hud_scale: f32,
-    /// Size of the crosshair, in [`Config::CROSSHAIR_SCALE_RANGE`].
-    pub crosshair_scale: f32,
-    /// Volumes in percent ([`Config::VOLUME_RANGE`]): everything, then the effects (shots,
-    /// steps, crawlers, stings) and the ambience (the room's tone) under it.
-    pub master_volume: f32,
-    pub effects_volume: f32,
-    pub ambience_volume: f32,
-}
+declare::config_file! {
+    /// The player's settings. Each key of the file is declared once, here: the field, its key
+    /// (`as` when the names differ), type, default, range (`in`) and the comment written above
+    /// it in the file (`{range}` stands for the range); `config/declare.rs` tells the syntax.
+    #[derive(Clone, Debug, PartialEq)]
+    pub struct Config {
+        keys {
+            [controls]
+            /// Mouse look speed as a multiplier: 1.0 = [`Config::BASE_RADIANS_PER_PIXEL`].
+            mouse_sensitivity as sensitivity: f32 = 1.0, in SENSITIVITY_RANGE = 0.1..=10.0,
+                "mouse look speed, 1.0 = 0.0025 radians per pixel ({range})";
+            /// Moving the mouse forward looks down.
+            invert_y: bool = false;
+            /// Vertical field of view, degrees, in [`Config::FOV_RANGE`]. The default is the engine's
+            /// own (`start_view::DEFAULT_FOV_Y`): the game looks as before.
+            fov_deg: f32 = 60.0, in FOV_RANGE = 50.0..=110.0, "vertical field of view, degrees ({range})";
 
-impl Default for Config {
-    fn default() -> Self {
-        Self {
-            mouse_sensitivity: 1.0,
-            invert_y: false,
-            // The engine's own default (`start_view::DEFAULT_FOV_Y`): the game looks as before.
-            fov_deg: 60.0,
-            render_scale: 1.0,
-            dynamic_resolution: false,
-            target_fps: 30.0,
-            vsync: true,
-            show_fps: false,
-            bindings: KeyBindings::default(),
-            gamepad: GamepadSettings::default(),
-            gi: GiSettings::default(),
-            brightness: 0.0,
-            calibrated: false,
-            reduce_flashing: false,
-            captions: true,
-            hud_scale: 1.0,
-            crosshair_scale: 1.0,
-            master_volume: 80.0,
-            effects_volume: 100.0,
-            ambience_volume: 100.0,
+            [video]
+            /// The 3D view's resolution relative to the window, in [`Config::RENDER_SCALE_RANGE`].
+            render_scale: f32 = 1.0, in RENDER_SCALE_RANGE = 0.25..=1.0,
+                "3D view resolution relative to the window ({range})";
+            /// Lower the render scale (down to 25 %, up to `render_scale`) to hold `target_fps`.
+            dynamic_resolution: bool = false,
+                "lower the render scale (to 25 % at least, to render_scale at most) to hold target_fps";
+            /// The frame rate dynamic resolution holds, in [`Config::TARGET_FPS_RANGE`].
+            target_fps: f32 = 30.0, in TARGET_FPS_RANGE = 10.0..=144.0,
+                "frames per second that dynamic resolution holds ({range})";
+            vsync: bool = true;
+            /// The frame-rate counter in a corner.
+            show_fps: bool = false;
+
+            [comfort]
+            /// Picture brightness in stops (exposure × 2^brightness), in [`Config::BRIGHTNESS_RANGE`].
+            brightness: f32 = 0.0, in BRIGHTNESS_RANGE = -2.0..=2.0,
+                "picture brightness in stops, 0 = as the level is lit ({range})";
+            /// The brightness calibration screen has been through (it opens on a first start).
+            calibrated: bool = false,
+                "the brightness screen has been shown (false: it opens at the next start)";
+            /// Tames what flashes: the low-battery flicker and the muzzle flash.
+            reduce_flashing: bool = false, "tame the low-battery flicker and the muzzle flash";
+            /// Writes what is heard and matters (a crawler noticing you: where, and if out of sight).
+            captions: bool = true,
+                "write what is heard and matters (a crawler noticing you: where, and if out of sight)";
+            /// Size of the HUD (the menus keep theirs), in [`Config::HUD_SCALE_RANGE`].
+            hud_scale: f32 = 1.0, in HUD_SCALE_RANGE = 0.75..=2.0, "size of the HUD ({range})";
+            /// Size of the crosshair, in [`Config::CROSSHAIR_SCALE_RANGE`].
+            crosshair_scale: f32 = 1.0, in CROSSHAIR_SCALE_RANGE = 0.5..=3.0, "size of the crosshair ({range})";
+
+            [audio]
+            /// Volumes in percent ([`Config::VOLUME_RANGE`]): everything, then the effects (shots,
+            /// steps, crawlers, stings) and the ambience (the room's tone) under it.
+            master_volume as master: f32 = 80.0, in VOLUME_RANGE = 0.0..=100.0,
+                "volumes in percent ({range}): everything, the effects (shots, steps, crawlers, stings), \
+                 the room's tone";
+            effects_volume as effects: f32 = 100.0, in VOLUME_RANGE;
+            ambience_volume as ambience: f32 = 100.0, in VOLUME_RANGE;
+        }
+        sections {
+            bindings: KeyBindings = KeyBindings::default();
+            /// The gamepad's buttons, look speed and dead zone (look follows `invert_y` too).
+            gamepad: GamepadSettings = GamepadSettings::default();
+            gi: GiSettings = GiSettings::default();
         }
     }
 }
@@ -92,14 +91,6 @@ impl Default for Config {
 impl Config {
     /// View rotation per pixel of mouse motion at sensitivity 1.0 (what the game always used).
     pub const BASE_RADIANS_PER_PIXEL: f32 = 0.0025;
-    pub const SENSITIVITY_RANGE: RangeInclusive<f32> = 0.1..=10.0;
-    pub const FOV_RANGE: RangeInclusive<f32> = 50.0..=110.0;
-    pub const RENDER_SCALE_RANGE: RangeInclusive<f32> = 0.25..=1.0;
-    pub const TARGET_FPS_RANGE: RangeInclusive<f32> = 10.0..=144.0;
-    pub const BRIGHTNESS_RANGE: RangeInclusive<f32> = -2.0..=2.0;
-    pub const HUD_SCALE_RANGE: RangeInclusive<f32> = 0.75..=2.0;
-    pub const CROSSHAIR_SCALE_RANGE: RangeInclusive<f32> = 0.5..=3.0;
-    pub const VOLUME_RANGE: RangeInclusive<f32> = 0.0..=100.0;
     /// How much of a flash `reduce_flashing` leaves: the muzzle flash's light, and the depth of
     /// the low-battery flicker.
     pub const REDUCED_FLASH: f32 = 0.25;

@@ -6,7 +6,8 @@ use engine::gamepad::PadButton;
 use engine::input::{KeyCode, MouseButton};
 use plugin_gi::GiSettings;
 
-use super::{config_path_from, Config, ConfigError};
+use super::format::{section_names, with_range};
+use super::{config_path_from, Config, ConfigError, KEYS};
 use crate::bindings::{Action, Binding, KeyBindings};
 use crate::pad_bindings::{GamepadSettings, PadBindings};
 
@@ -74,13 +75,9 @@ fn every_setting_survives_save_and_load() {
     let c = changed();
     let d = Config::default();
     // The test is only as good as this: every field is off its default.
-    assert!(c.mouse_sensitivity != d.mouse_sensitivity && c.invert_y != d.invert_y && c.fov_deg != d.fov_deg);
-    assert!(c.render_scale != d.render_scale && c.vsync != d.vsync && c.show_fps != d.show_fps);
-    assert!(c.dynamic_resolution != d.dynamic_resolution && c.target_fps != d.target_fps);
-    assert!(c.brightness != d.brightness && c.calibrated != d.calibrated && c.reduce_flashing != d.reduce_flashing);
-    assert!(c.hud_scale != d.hud_scale && c.crosshair_scale != d.crosshair_scale && c.captions != d.captions);
-    assert!(c.master_volume != d.master_volume && c.effects_volume != d.effects_volume);
-    assert!(c.ambience_volume != d.ambience_volume);
+    for key in KEYS {
+        assert_ne!((key.write)(&c), (key.write)(&d), "{}.{}", key.section, key.name);
+    }
     for action in [Action::Jump, Action::Fire, Action::MoveForward, Action::Crouch] {
         assert_ne!(c.bindings.get(action), d.bindings.get(action), "{action:?}");
     }
@@ -104,6 +101,50 @@ fn every_setting_survives_save_and_load() {
     let left: Vec<_> = fs::read_dir(path.parent().unwrap()).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(left, vec![OsString::from("config.toml")]);
     let _ = fs::remove_dir_all(dir);
+}
+
+/// Each key the list in `config.rs` declares is written in its section under its comment, and
+/// read back alone into its own field.
+#[test]
+fn every_declared_key_is_written_with_its_comment_and_read_back() {
+    let (c, d) = (changed(), Config::default());
+    let text = c.to_toml();
+    for key in KEYS {
+        let value = (key.write)(&c);
+        let header = format!("\n[{}]\n", key.section);
+        let start = text.find(&header).unwrap_or_else(|| panic!("{header:?} in\n{text}")) + header.len();
+        let section = &text[start..text[start..].find("\n[").map_or(text.len(), |end| start + end)];
+        let line = format!("{} = {value}\n", key.name);
+        let expected = match key.comment {
+            Some(comment) => format!("# {}\n{line}", with_range(comment, key)),
+            None => line,
+        };
+        let at_line_start = section.starts_with(&expected) || section.contains(&format!("\n{expected}"));
+        assert!(at_line_start, "{expected:?} in [{}]:\n{section}", key.section);
+
+        let alone = format!("[{}]\n{} = {value}\n", key.section, key.name);
+        let read = Config::from_toml(&alone, Path::new("c.toml")).unwrap_or_else(|e| panic!("{alone:?}: {e}"));
+        for other in KEYS {
+            let wanted = if std::ptr::eq(other, key) { &c } else { &d };
+            assert_eq!((other.write)(&read), (other.write)(wanted), "{alone:?}: {}", other.name);
+        }
+        assert_eq!(read.bindings, d.bindings);
+        assert_eq!((&read.gamepad, &read.gi), (&d.gamepad, &d.gi));
+    }
+    assert!(!text.contains("{range}"), "every {{range}} is replaced:\n{text}");
+    // The one comment that quotes a constant rather than the key's range.
+    let sensitivity = KEYS.iter().find(|k| k.name == "sensitivity").and_then(|k| k.comment).unwrap();
+    assert!(sensitivity.contains(&format!("1.0 = {} radians", Config::BASE_RADIANS_PER_PIXEL)), "{sensitivity}");
+}
+
+#[test]
+fn every_section_is_written_in_order_and_named_in_errors() {
+    let text = Config::default().to_toml();
+    let headers: Vec<&str> = text.lines().filter(|l| l.starts_with('[')).collect();
+    let expected: Vec<String> = section_names().iter().map(|s| format!("[{s}]")).collect();
+    assert_eq!(headers, expected);
+    let e = parse_err("[sound]\n");
+    assert!(e.problem.ends_with(&format!("(the sections are {})", section_names().join(", "))), "{e}");
 }
 
 #[test]
