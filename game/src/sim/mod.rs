@@ -67,11 +67,6 @@ pub struct WorldState {
 }
 
 impl WorldState {
-    /// 64-bit FNV-1a over every field's exact bits, in declaration order.
-    pub fn hash(&self) -> u64 {
-        hash::world(self)
-    }
-
     pub fn enemies_left(&self) -> usize {
         self.enemies.iter().filter(|e| e.alive()).count()
     }
