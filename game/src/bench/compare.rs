@@ -14,7 +14,8 @@ use engine::scene::Level;
 use engine::start_view::{initial_view, ViewOverrides};
 use serde::Serialize;
 
-use super::{CameraPath, Spread, WARMUP_FRAMES};
+use super::camera_path::CameraPath;
+use super::timing::{Spread, WARMUP_FRAMES};
 use crate::cli::BenchArgs;
 
 #[derive(Serialize, Debug)]
