@@ -4,6 +4,7 @@
 //! open), Esc opens the pause menu, F1 the GI panel, F3 the performance overlay.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use engine::camera::CameraProjection;
 use engine::clock::FixedClock;
@@ -23,7 +24,7 @@ use crate::game_events::Messages;
 use crate::level_list::ListedLevel;
 use crate::level_watch::FileWatch;
 use crate::recording::{Divergence, LoadedReplay, Recorder};
-use crate::sim::{lamp, player, weapon, Outcome, Simulation, WorldState};
+use crate::sim::{lamp, player, weapon, LevelWorld, Outcome, Simulation, WorldState};
 use crate::sound::Soundscape;
 use crate::view::WorldView;
 
@@ -177,7 +178,7 @@ pub struct GameWindow {
     /// Its files, polled for edits.
     watch: Option<FileWatch>,
     /// A level loaded and waiting for the next render to swap in.
-    next_level: Option<level_switch::NextLevel>,
+    next_level: Option<NextLevel>,
     /// The last reload's failure, shown until a reload works.
     reload_error: Option<String>,
     /// When (`time`) the level was last swapped, for a brief notice.
@@ -185,6 +186,17 @@ pub struct GameWindow {
     /// The level menu's levels, once the scan that finds them is done.
     levels: Vec<ListedLevel>,
     listing: Option<std::sync::mpsc::Receiver<Vec<ListedLevel>>>,
+}
+
+/// A level loaded and checked, waiting for the GPU. Defined here, beside the window that holds
+/// it, rather than in `level_switch`, which makes and swaps it: this module does not import
+/// its own child back.
+struct NextLevel {
+    path: PathBuf,
+    level: Level,
+    world: Arc<LevelWorld>,
+    /// Live reload keeps the player where they stand and look; a new level starts at its spawn.
+    keep_pose: bool,
 }
 
 impl GameWindow {
