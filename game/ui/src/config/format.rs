@@ -5,21 +5,36 @@
 use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::ops::{Range, RangeInclusive};
+use std::path::Path;
 
 use engine::gamepad::PadButton;
 use plugin_gi::GiSettings;
 use serde::Deserialize;
 use toml::{Spanned, Value};
 
-use super::Config;
+use super::{Config, ConfigError};
 use crate::bindings::{Action, Binding, KeyBindings, SLOTS};
 use crate::pad_bindings::{self, GamepadSettings, PadBindings};
 
-/// A problem found in the text; [`super::ConfigError`] adds the file.
-pub(super) struct ParseError {
-    pub line: Option<usize>,
-    pub key: Option<String>,
-    pub problem: String,
+/// A problem found in the text; [`ConfigError`] adds the file.
+struct ParseError {
+    line: Option<usize>,
+    key: Option<String>,
+    problem: String,
+}
+
+// Config's two TOML methods are written here, beside the format they are, so that the config's
+// module does not import its own format back.
+impl Config {
+    /// The file's text, with a comment on each setting.
+    pub fn to_toml(&self) -> String {
+        write(self)
+    }
+
+    /// Reads a config from its text; `path` only names the file in errors.
+    pub fn from_toml(text: &str, path: &Path) -> Result<Config, ConfigError> {
+        parse(text).map_err(|e| ConfigError { path: path.to_owned(), line: e.line, key: e.key, problem: e.problem })
+    }
 }
 
 const SECTIONS: [&str; 8] = ["controls", "video", "comfort", "audio", "bindings", "gamepad", "gamepad_bindings", "gi"];
@@ -29,7 +44,7 @@ const GAMEPAD: [&str; 2] = ["look_sensitivity", "dead_zone"];
 const VIDEO: [&str; 5] = ["render_scale", "dynamic_resolution", "target_fps", "vsync", "show_fps"];
 const AUDIO: [&str; 3] = ["master", "effects", "ambience"];
 
-pub(super) fn write(c: &Config) -> String {
+fn write(c: &Config) -> String {
     let range = |r: &RangeInclusive<f32>| format!("{:?} to {:?}", r.start(), r.end());
     let mut out = String::new();
     // `{:?}` writes an f32 as the shortest text that reads back as the same f32, always
@@ -151,7 +166,7 @@ struct Sections {
     gi: Entries,
 }
 
-pub(super) fn parse(text: &str) -> Result<Config, ParseError> {
+fn parse(text: &str) -> Result<Config, ParseError> {
     let line_of = |span: Range<usize>| text[..span.start.min(text.len())].matches('\n').count() + 1;
     let syntax = |e: toml::de::Error| ParseError {
         line: e.span().map(line_of),
