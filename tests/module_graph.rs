@@ -14,6 +14,10 @@
 //! stops (so `crate::passes::Item`, re-exported by `passes/mod.rs` from `passes/x.rs`, is an
 //! edge to `passes/x.rs`). Paths into other crates are not edges, comments and doc links are not
 //! read, and test code (`#[cfg(test)]` items, `mod tests;` files) is left out.
+//!
+//! Without types, a method call is not seen: `self.f()` where `f` is written in another file's
+//! `impl` names nothing. So a type's methods may live in a child module (`impl Config` in
+//! `config/format.rs`) that uses the type, and the type's own module need not name the child.
 
 mod circles;
 mod syntax;
