@@ -13,6 +13,7 @@ pub use engine;
 pub mod frames;
 pub mod fuzz_bounds;
 pub mod fuzz_targets;
+pub mod module_graph;
 pub mod replay_files;
 
 pub use game::golden::Difference;

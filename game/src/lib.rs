@@ -16,6 +16,7 @@ pub mod play;
 pub mod recording;
 pub mod render_cmd;
 pub mod replay_cmd;
+pub mod replay_frames;
 pub mod replay_goldens;
 pub mod script;
 pub mod script_trace;

@@ -4,6 +4,7 @@
 //! open), Esc opens the pause menu, F1 the GI panel, F3 the performance overlay.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use engine::camera::CameraProjection;
 use engine::clock::FixedClock;
@@ -23,7 +24,7 @@ use crate::game_events::Messages;
 use crate::level_list::ListedLevel;
 use crate::level_watch::FileWatch;
 use crate::recording::{Divergence, LoadedReplay, Recorder};
-use crate::sim::{lamp, player, weapon, Outcome, Simulation, WorldState};
+use crate::sim::{lamp, player, weapon, LevelWorld, Outcome, Simulation, WorldState};
 use crate::sound::Soundscape;
 use crate::view::WorldView;
 
@@ -170,6 +171,9 @@ pub struct GameWindow {
     reflection_lights: Option<u32>,
     /// Frames drawn since the overlay was opened.
     frames: u32,
+    /// A restart or the lamp set down, thrown or picked up since the last frame: the renderer's
+    /// history is reset before the next (a new level brings a new renderer).
+    light_cut: bool,
     gi_panel_open: bool,
     quit: bool,
     /// The level being played, for live reload (None while watching a replay).
@@ -177,7 +181,7 @@ pub struct GameWindow {
     /// Its files, polled for edits.
     watch: Option<FileWatch>,
     /// A level loaded and waiting for the next render to swap in.
-    next_level: Option<level_switch::NextLevel>,
+    next_level: Option<NextLevel>,
     /// The last reload's failure, shown until a reload works.
     reload_error: Option<String>,
     /// When (`time`) the level was last swapped, for a brief notice.
@@ -185,6 +189,17 @@ pub struct GameWindow {
     /// The level menu's levels, once the scan that finds them is done.
     levels: Vec<ListedLevel>,
     listing: Option<std::sync::mpsc::Receiver<Vec<ListedLevel>>>,
+}
+
+/// A level loaded and checked, waiting for the GPU. Defined here, beside the window that holds
+/// it, rather than in `level_switch`, which makes and swaps it: this module does not import
+/// its own child back.
+struct NextLevel {
+    path: PathBuf,
+    level: Level,
+    world: Arc<LevelWorld>,
+    /// Live reload keeps the player where they stand and look; a new level starts at its spawn.
+    keep_pose: bool,
 }
 
 impl GameWindow {
@@ -221,6 +236,7 @@ impl GameWindow {
             pass_times: Vec::new(),
             reflection_lights: None,
             frames: 0,
+            light_cut: false,
             gi_panel_open: false,
             quit: false,
             level_path: None,
@@ -290,6 +306,7 @@ impl GameWindow {
                     *next += 1;
                 }
             }
+            self.light_cut |= self.sim.events.iter().any(crate::sim::Event::cuts_the_light);
             self.messages.push_events(&self.sim.events, &self.sim.state, self.config.captions);
             self.sound.hear(&self.sim.events, &self.sim.state, &self.sim.world());
             self.ticks_this_frame += 1;
@@ -305,6 +322,7 @@ impl GameWindow {
         self.prev = self.sim.state.clone();
         self.clock = FixedClock::new(self.sim.tick_rate());
         self.since_outcome = 0.0;
+        self.light_cut = true;
         self.messages = Messages::default();
         if let TickSource::Live { sampler, recorder: Some(r) } = &mut self.source {
             sampler.clear();
@@ -668,6 +686,9 @@ impl WindowApp for GameWindow {
             self.make_thumbnail(gpu, i);
         }
         let renderer = self.renderer.as_mut().expect("init runs before render");
+        if std::mem::take(&mut self.light_cut) {
+            renderer.reset_history();
+        }
         renderer.render(gpu, &self.view.view, target, view)?;
         self.frames += 1;
         // The first timed frame is the one after opening; then every TIMING_EVERY.

@@ -5,15 +5,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context};
 use engine::clock::FixedClock;
-use engine::gpu::Gpu;
-use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
-use engine::renderer::Renderer;
 
 use crate::cli::{RecordArgs, ReplayArgs, ScriptArgs};
 use crate::play::{GameWindow, TickSource};
 use crate::recording::{self, LoadedReplay, Recorder};
+use crate::replay_frames::{frames, snapshot_name};
 use crate::sim::{Simulation, TickCommand, WorldState};
-use crate::view::WorldView;
 
 /// Plays in a window while recording; the replay is written when the window closes, and also
 /// when the game stops on an error, so what was played is never lost.
@@ -91,70 +88,6 @@ pub fn headless(
         Some(dir) => Ok(image.save(dir.join(snapshot_name(tick)))?),
         None => Ok(()),
     })
-}
-
-/// Re-simulates a replay without a window, checking every tick's hash, and hands `frame` the
-/// picture after each of `ticks` (0 = the start; in tick order, each once).
-pub fn frames(
-    loaded: &LoadedReplay,
-    ticks: &[u32],
-    size: (u32, u32),
-    mut frame: impl FnMut(u32, &image::RgbaImage) -> anyhow::Result<()>,
-) -> anyhow::Result<WorldState> {
-    let end = loaded.commands.len() as u32;
-    if let Some(&late) = ticks.iter().find(|&&t| t > end) {
-        bail!("--snapshots: tick {late} is past the end of {} ({end} ticks)", loaded.path.display());
-    }
-    let mut ticks = ticks.to_vec();
-    ticks.sort_unstable();
-    ticks.dedup();
-    let mut shooter = if ticks.is_empty() { None } else { Some(SnapshotRenderer::new(loaded, size)?) };
-    let mut sim = loaded.simulation()?;
-    let mut wanted = ticks.iter().peekable();
-    for i in 0..=loaded.commands.len() {
-        while wanted.next_if_eq(&&(i as u32)).is_some() {
-            if let Some(s) = &mut shooter {
-                frame(i as u32, &s.shoot(&sim)?)?;
-            }
-        }
-        if i < loaded.commands.len() {
-            loaded.step_checked(&mut sim, i).with_context(|| loaded.path.display().to_string())?;
-        }
-    }
-    Ok(sim.state)
-}
-
-/// Renders the game's view of a simulation, headless.
-struct SnapshotRenderer {
-    gpu: Gpu,
-    renderer: Renderer,
-    target: HeadlessTarget,
-    view: WorldView,
-}
-
-impl SnapshotRenderer {
-    fn new(loaded: &LoadedReplay, size: (u32, u32)) -> anyhow::Result<Self> {
-        let gpu = Gpu::headless()?;
-        let (plugins, _) = crate::plugins(loaded.gi.clone());
-        let mut renderer = Renderer::new(&gpu, &loaded.level.scene, plugins)?;
-        let target = HeadlessTarget::new(&gpu, size.0, size.1, ImageKind::Display);
-        let mut view = WorldView::new(&loaded.level);
-        view.add_meshes(&mut renderer, &gpu);
-        Ok(Self { gpu, renderer, target, view })
-    }
-
-    fn shoot(&mut self, sim: &Simulation) -> anyhow::Result<image::RgbaImage> {
-        self.view.at(sim.entities(), &sim.state);
-        match self.target.render(&self.gpu, &mut self.renderer, &self.view.view)? {
-            RenderedImage::Display(image) => Ok(image),
-            RenderedImage::Linear(_) => bail!("a display target rendered linear values"),
-        }
-    }
-}
-
-/// The file name `replay --headless --snapshots` gives the frame after `tick` ticks.
-pub fn snapshot_name(tick: u32) -> String {
-    format!("tick_{tick:06}.png")
 }
 
 /// Simulates a script's commands and writes them, with their hashes, as a replay; with

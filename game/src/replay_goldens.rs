@@ -8,7 +8,7 @@ use std::path::Path;
 use anyhow::{bail, Context};
 
 use crate::recording::LoadedReplay;
-use crate::replay_cmd::{frames, snapshot_name};
+use crate::replay_frames::{frames, snapshot_name};
 
 /// Compares (or with `update`, writes) the goldens; one line per frame, an error when any
 /// frame differs.

@@ -10,9 +10,9 @@ use crate::gpu_types::{names, ReflectionLight};
 /// The reflection lights that lit the tile at the centre of the view in the last frame: its
 /// cut through the pyramid.
 pub fn lights(gpu: &Gpu, renderer: &Renderer) -> Option<Vec<ReflectionLight>> {
-    let stats = read_buffer(gpu, renderer.graph().physical_buffer(names::STATS)?);
+    let stats = read_buffer(gpu, renderer.graph().buffer_by_label(names::STATS)?);
     let count = u32::from_le_bytes(stats[4..8].try_into().ok()?) as usize;
-    let bytes = read_buffer(gpu, renderer.graph().physical_buffer(names::LIGHTS)?);
+    let bytes = read_buffer(gpu, renderer.graph().buffer_by_label(names::LIGHTS)?);
     let all: &[ReflectionLight] = bytemuck::cast_slice(&bytes);
     Some(all[..count.min(all.len())].to_vec())
 }
@@ -36,14 +36,14 @@ impl CutStats {
 }
 
 pub fn cut_stats(gpu: &Gpu, renderer: &Renderer) -> Option<CutStats> {
-    let stats = read_buffer(gpu, renderer.graph().physical_buffer(names::STATS)?);
+    let stats = read_buffer(gpu, renderer.graph().buffer_by_label(names::STATS)?);
     let word = |i: usize| u32::from_le_bytes(stats[4 * i..4 * i + 4].try_into().expect("4 bytes"));
     Some(CutStats { lights: word(4) as u64, tiles: word(5), full_tiles: word(6) })
 }
 
 /// Σ Φ over the last frame's flux G-buffer, per channel (W), summed in f64.
 pub fn gbuffer_flux(gpu: &Gpu, renderer: &Renderer) -> Option<[f64; 3]> {
-    let bytes = read_texture(gpu, renderer.graph().physical_texture(names::FLUX)?);
+    let bytes = read_texture(gpu, renderer.graph().texture_by_label(names::FLUX)?);
     let texels: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
     Some(sum3(texels.iter().map(|t| [t[0], t[1], t[2]])))
 }

@@ -128,12 +128,6 @@ impl LevelCollision {
         self.bounds
     }
 
-    /// Whether an upright capsule of `radius` and `height` (feet to top) standing at `feet`
-    /// touches nothing of the level.
-    pub fn capsule_fits(&self, feet: Vec3, radius: f32, height: f32) -> bool {
-        crate::sweep::Mover::new(self, radius, height, 45.0).fits(feet)
-    }
-
     /// Number of triangles in the collision mesh (degenerate input triangles excluded).
     pub fn triangle_count(&self) -> usize {
         self.triangle_count

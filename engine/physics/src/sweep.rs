@@ -232,3 +232,13 @@ impl<'a> Mover<'a> {
         !blocked
     }
 }
+
+/// The level's capsule query is written here, beside the capsule it asks about: the level's
+/// own module stays below the sweep, which moves through it.
+impl LevelCollision {
+    /// Whether an upright capsule of `radius` and `height` (feet to top) standing at `feet`
+    /// touches nothing of the level.
+    pub fn capsule_fits(&self, feet: Vec3, radius: f32, height: f32) -> bool {
+        Mover::new(self, radius, height, 45.0).fits(feet)
+    }
+}

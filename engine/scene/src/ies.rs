@@ -18,8 +18,8 @@ use std::path::Path;
 
 use glam::Vec3;
 
+use crate::distribution_image::DistributionImage;
 use crate::error::{LoadError, LoadErrorKind, TextPos};
-use crate::level::DistributionImage;
 use crate::sources::Sources;
 
 /// Largest .ies file read; real ones are tens of kilobytes.

@@ -41,19 +41,15 @@
 
 use std::path::{Path, PathBuf};
 
-use glam::Vec3;
-
 use crate::error::{LoadError, LoadErrorKind, LoadWarning};
 use crate::gltf_loader::load_gltf_with;
-use crate::ies::IesProfile;
+use crate::headlamp_profile::HeadlampProfile;
 use crate::level_toml::parse_level_toml;
 use crate::obj_loader::load_obj_with;
 use crate::sources::Sources;
+use crate::spawn::Spawn;
 use crate::zip_level::is_zip;
 use crate::Scene;
-
-/// Height of the eyes above the feet, metres (the spawn position is the feet).
-pub const DEFAULT_EYE_HEIGHT: f32 = 1.6;
 
 /// A loaded level: the scene plus everything `level.toml` says about playing it.
 #[derive(Clone, Debug, PartialEq)]
@@ -81,73 +77,6 @@ pub struct Level {
     pub warnings: Vec<LoadWarning>,
     /// Every file the load read (for a zipped level, the archive): what live reload watches.
     pub files: Vec<PathBuf>,
-}
-
-/// Where the player starts.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Spawn {
-    /// Feet position, metres.
-    pub position: Vec3,
-    /// Radians; 0 looks down -Z, positive turns left (counter-clockwise seen from above).
-    pub yaw: f32,
-    /// Radians; positive looks up.
-    pub pitch: f32,
-}
-
-impl Spawn {
-    /// The eye position: feet raised by [`DEFAULT_EYE_HEIGHT`].
-    pub fn eye(&self) -> Vec3 {
-        self.position + Vec3::Y * DEFAULT_EYE_HEIGHT
-    }
-
-    /// Unit view direction for `yaw` and `pitch`.
-    pub fn forward(&self) -> Vec3 {
-        let (sy, cy) = self.yaw.sin_cos();
-        let (sp, cp) = self.pitch.sin_cos();
-        Vec3::new(-sy * cp, sp, -cy * cp)
-    }
-}
-
-/// The player's lamp: radiant intensity I(ω) = power · color · T(uv(ω)) over its frustum.
-#[derive(Clone, Debug, PartialEq)]
-pub struct HeadlampProfile {
-    /// W/sr.
-    pub power: f32,
-    /// Vertical field of view of the lamp frustum, radians.
-    pub fov_y: f32,
-    /// Linear RGB tint.
-    pub color: [f32; 3],
-    pub distribution: IntensityDistribution,
-}
-
-impl Default for HeadlampProfile {
-    fn default() -> Self {
-        Self { power: 1.0, fov_y: 60f32.to_radians(), color: [1.0; 3], distribution: IntensityDistribution::Uniform }
-    }
-}
-
-/// T in I(ω) = P·T(uv(ω)): the relative intensity across the lamp frustum.
-#[derive(Clone, Debug, PartialEq)]
-pub enum IntensityDistribution {
-    /// T = 1 everywhere in the frustum.
-    Uniform,
-    /// T = 1 within `inner` of the axis, 0 beyond `outer` (half-angles, radians), smooth between.
-    Spot { inner: f32, outer: f32 },
-    /// T sampled from a texture spanning the frustum.
-    Image(DistributionImage),
-    /// T from a photometric candela table (an IES file), candela / its largest value in each
-    /// direction: baked for whatever frustum the lamp has (the camera's while worn, `fov_deg`
-    /// square when put down), so the angles stay right at any field of view and aspect.
-    Photometric(IesProfile),
-}
-
-/// A linear intensity texture, row-major from the top-left. PNG values are v/255 (no sRGB
-/// decoding: they are intensities, not colours); EXR values are used as stored.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DistributionImage {
-    pub width: u32,
-    pub height: u32,
-    pub values: Vec<[f32; 3]>,
 }
 
 /// Loads a level from a folder holding `level.toml`, from the `level.toml` file itself, from a

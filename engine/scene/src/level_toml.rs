@@ -11,12 +11,14 @@ use std::path::Path;
 use glam::Vec3;
 use serde::Deserialize;
 
+use crate::distribution_image::DistributionImage;
 use crate::error::{one_line, LoadError, LoadErrorKind, TextPos};
+use crate::headlamp_profile::{HeadlampProfile, IntensityDistribution};
 use crate::ies::{ies_texture_size, read_ies};
 use crate::image_loader::decode_image;
-use crate::level::{DistributionImage, HeadlampProfile, IntensityDistribution, Spawn};
 use crate::limits::MAX_PROFILE_SIZE;
 use crate::sources::Sources;
+use crate::spawn::Spawn;
 use crate::toml_place::{key_place, leading_key};
 use crate::{LightKind, PunctualLight};
 

@@ -14,7 +14,8 @@ use engine::scene::Level;
 use engine::start_view::{initial_view, ViewOverrides};
 use serde::Serialize;
 
-use super::{CameraPath, Spread, WARMUP_FRAMES};
+use super::camera_path::CameraPath;
+use super::timing::{Spread, WARMUP_FRAMES};
 use crate::cli::BenchArgs;
 
 #[derive(Serialize, Debug)]
@@ -77,7 +78,7 @@ pub fn compare(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSett
         on_ms.push(b);
         ratios.push(b / a);
     }
-    let stats = on_handle.stats();
+    let stats = plugin_gi::GiStats::of(&on);
     let (off_ms, on_ms) = (Spread::of(&off_ms), Spread::of(&on_ms));
     Ok(CompareReport {
         level: args.level.display().to_string(),

@@ -7,7 +7,7 @@ use glam::Vec3;
 use physics::{CharacterConfig, LevelCollision};
 use scene::{IntensityDistribution, Level, TextPos};
 
-use super::Diagnostic;
+use super::diagnostic::Diagnostic;
 use crate::sim::level_entities::LevelEntities;
 use crate::sim::nav_grid::NavGrid;
 use crate::sim::pickup::{GRAB_HEIGHT, GRAB_RADIUS};

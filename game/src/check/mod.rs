@@ -6,55 +6,18 @@
 //! Each finding is one line, `FILE:LINE:COL: error|warning: MESSAGE` (`FILE: …` where no
 //! place in the file is known), or with `--json` one JSON document for tools.
 
+mod diagnostic;
 mod gameplay;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ExitCode;
 
-use scene::{Level, TextPos};
+use scene::Level;
 use serde::Serialize;
 
 use crate::cli::CheckArgs;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Severity {
-    Error,
-    Warning,
-}
-
-/// One finding about a level, placed in the file it is about.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Diagnostic {
-    pub file: PathBuf,
-    pub at: Option<TextPos>,
-    pub severity: Severity,
-    pub message: String,
-}
-
-impl std::fmt::Display for Diagnostic {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}", self.file.display())?;
-        if let Some(at) = self.at {
-            write!(f, ":{}:{}", at.line, at.column)?;
-        }
-        let severity = match self.severity {
-            Severity::Error => "error",
-            Severity::Warning => "warning",
-        };
-        write!(f, ": {severity}: {}", self.message)
-    }
-}
-
-impl Diagnostic {
-    pub fn error(file: impl Into<PathBuf>, at: Option<TextPos>, message: impl Into<String>) -> Self {
-        Self { file: file.into(), at, severity: Severity::Error, message: message.into() }
-    }
-
-    pub fn warning(file: impl Into<PathBuf>, at: Option<TextPos>, message: impl Into<String>) -> Self {
-        Self { file: file.into(), at, severity: Severity::Warning, message: message.into() }
-    }
-}
+pub use diagnostic::{Diagnostic, Severity};
 
 /// Everything `check` finds wrong with the level at `path`, errors and warnings, in the order
 /// the game would meet them. No errors: the game loads and starts it.

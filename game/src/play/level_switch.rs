@@ -3,7 +3,7 @@
 //! the next `render` (which has the GPU) builds its renderer and swaps it in, so a bad edit
 //! never replaces the level that runs.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 use engine::clock::FixedClock;
@@ -11,22 +11,13 @@ use engine::gpu::Gpu;
 use engine::renderer::Renderer;
 use engine::scene::Level;
 
-use super::{GameWindow, TickSource};
+use super::{GameWindow, NextLevel, TickSource};
 use crate::game_events::Messages;
 use crate::level_list::ListedLevel;
 use crate::level_watch::FileWatch;
 use crate::recording::Recorder;
 use crate::sim::{LevelWorld, Simulation};
 use crate::view::WorldView;
-
-/// A level loaded and checked, waiting for the GPU.
-pub(super) struct NextLevel {
-    path: PathBuf,
-    level: Level,
-    world: Arc<LevelWorld>,
-    /// Live reload keeps the player where they stand and look; a new level starts at its spawn.
-    keep_pose: bool,
-}
 
 /// A level as `play` loads it: the scene, then the gameplay world (markers, collision).
 fn load(path: &Path) -> anyhow::Result<(Level, Arc<LevelWorld>)> {

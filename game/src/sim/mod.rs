@@ -67,11 +67,6 @@ pub struct WorldState {
 }
 
 impl WorldState {
-    /// 64-bit FNV-1a over every field's exact bits, in declaration order.
-    pub fn hash(&self) -> u64 {
-        hash::world(self)
-    }
-
     pub fn enemies_left(&self) -> usize {
         self.enemies.iter().filter(|e| e.alive()).count()
     }
@@ -140,6 +135,14 @@ pub enum Event {
     },
     /// The player died.
     Died,
+}
+
+impl Event {
+    /// Whether the light changes at once, so that what the renderer kept from earlier frames
+    /// (its history) says nothing of the next: the lamp leaving the head or coming back.
+    pub fn cuts_the_light(&self) -> bool {
+        matches!(self, Event::LampPickedUp | Event::LampLetGo { .. })
+    }
 }
 
 /// A level's fixed gameplay data: its collision geometry and what it places.

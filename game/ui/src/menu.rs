@@ -8,6 +8,7 @@ mod levels_screen;
 mod settings_screen;
 #[cfg(test)]
 mod tests;
+mod widgets;
 
 use engine::egui::{self, Color32, RichText};
 use engine::input::{Input, KeyCode};
@@ -16,6 +17,7 @@ use crate::config::Config;
 use levels_screen::LevelsScreen;
 pub use levels_screen::{LevelCard, THUMBNAIL};
 use settings_screen::SettingsScreen;
+use widgets::{big_button, heading, panel};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Screen {
@@ -72,7 +74,6 @@ impl Default for Menus {
 
 /// The title of the main menu.
 pub const TITLE: &str = "Headlamp";
-const BUTTON_WIDTH: f32 = 240.0;
 /// The headlamp's warm white, for titles.
 const LAMP_YELLOW: Color32 = Color32::from_rgb(250, 225, 140);
 
@@ -317,32 +318,4 @@ fn backdrop(ctx: &egui::Context) {
             ui.painter().rect_filled(rect, 0.0, Color32::from_black_alpha(170));
         },
     );
-}
-
-/// A screen's centred panel. `id` keeps each screen's size apart (areas remember theirs).
-fn panel<R>(ctx: &egui::Context, id: &str, add_contents: impl FnOnce(&mut egui::Ui) -> R) -> R {
-    egui::Area::new(egui::Id::unique(id))
-        .order(egui::Order::Foreground)
-        .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
-        .show(ctx, |ui| {
-            egui::Frame::NONE
-                .fill(Color32::from_rgba_unmultiplied(16, 16, 20, 240))
-                .stroke(egui::Stroke::new(1.0, Color32::from_gray(70)))
-                .corner_radius(10.0)
-                .inner_margin(egui::Margin::same(24))
-                .show(ui, |ui| ui.vertical_centered(add_contents).inner)
-                .inner
-        })
-        .inner
-}
-
-fn heading(ui: &mut egui::Ui, text: &str) {
-    ui.label(RichText::new(text).size(32.0).strong().color(Color32::from_gray(240)));
-    ui.add_space(16.0);
-}
-
-/// A wide menu button; true when clicked.
-fn big_button(ui: &mut egui::Ui, text: &str) -> bool {
-    let button = egui::Button::new(RichText::new(text).size(20.0));
-    ui.add_sized(egui::vec2(BUTTON_WIDTH, 40.0), button).clicked()
 }

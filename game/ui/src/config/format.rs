@@ -25,6 +25,25 @@ const HEADER: &str = "\
 # file is then kept as config.toml.bad while the game runs with the defaults.
 ";
 
+// Config's two TOML methods are written here, beside the format they are, so that the config's
+// module does not import its own format back.
+impl Config {
+    /// The file's text, with a comment on each setting.
+    pub fn to_toml(&self) -> String {
+        write(self)
+    }
+
+    /// Reads a config from its text; `path` only names the file in errors.
+    pub fn from_toml(text: &str, path: &std::path::Path) -> Result<Config, super::ConfigError> {
+        parse(text).map_err(|e| super::ConfigError {
+            path: path.to_owned(),
+            line: e.line,
+            key: e.key,
+            problem: e.problem,
+        })
+    }
+}
+
 pub(super) fn write(c: &Config) -> String {
     let mut out = String::from(HEADER);
     for section in PLAIN_SECTIONS {

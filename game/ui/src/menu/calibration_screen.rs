@@ -5,7 +5,7 @@
 
 use engine::egui::{self, Color32, RichText};
 
-use super::{big_button, heading, panel};
+use super::widgets::{big_button, heading, panel};
 use crate::config::Config;
 
 /// Tonemap inputs of the squares at brightness 0, as fractions of a white wall 4 m from the

@@ -4,7 +4,7 @@
 
 use engine::egui::{self, Color32, RichText};
 
-use super::{big_button, heading, panel};
+use super::widgets::{big_button, heading, panel};
 
 /// What the level menu shows of one level; the game fills these in.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -9,7 +9,7 @@
 use engine::egui::{self, Color32, RichText};
 use engine::input::Input;
 
-use super::panel;
+use super::widgets::panel;
 use crate::bindings::{Action, Binding, SLOTS};
 use crate::config::Config;
 use crate::gi_panel;
