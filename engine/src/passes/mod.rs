@@ -14,6 +14,7 @@ pub use direct_light::DirectLightPass;
 pub use fullscreen::{bind_textures, color_pass, fullscreen_pipeline, procedural_pipeline, textures_layout};
 pub use gbuffer::GBufferPass;
 pub use lamp_view::{LampViewPass, LAMP_MAP_SIZE};
+pub(crate) use present::PresentUniform;
 pub use present::{OutputView, PresentPass, PresentSettings};
 pub use view_model::{ViewModelPass, ViewModelProbePass, VIEW_MODEL_IRRADIANCE_SIZE};
 
