@@ -5,7 +5,7 @@
 use engine::wgpu;
 
 use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
-use crate::gpu_types::NODE_SIZE;
+use crate::gpu_types::{Levels, NODE_SIZE};
 use crate::passes::{module, PYRAMID_SHADER};
 use crate::quadtree::Quadtree;
 
@@ -78,8 +78,8 @@ impl FluxPyramid {
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
-        let levels = uniform_buffer(device, "gi levels", 128);
-        queue.write_buffer(&levels, 0, bytemuck::cast_slice(&tree.table()));
+        let levels = uniform_buffer(device, "gi levels", std::mem::size_of::<Levels>() as u64);
+        queue.write_buffer(&levels, 0, bytemuck::bytes_of(&Levels { levels: tree.table() }));
         self.buffers = Some(PyramidBuffers { size, tree, nodes, levels });
     }
 

@@ -9,7 +9,7 @@ use engine::wgpu;
 
 use super::flux::lamp_view;
 use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
-use crate::gpu_types::names;
+use crate::gpu_types::{names, SenderRange};
 use crate::shared::{GiHandle, GpuShared};
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/reference.wgsl");
@@ -91,9 +91,14 @@ impl RenderPass for ReferencePass {
         }
         let sums = &self.sums.as_ref().expect("made above").1;
         for chunk in 0..chunks {
-            let range = [chunk * SENDERS_PER_DISPATCH, SENDERS_PER_DISPATCH, u32::from(chunk + 1 == chunks), stride];
+            let range = SenderRange {
+                first: chunk * SENDERS_PER_DISPATCH,
+                count: SENDERS_PER_DISPATCH,
+                last: u32::from(chunk + 1 == chunks),
+                stride,
+            };
             let uniform = &self.ranges[chunk as usize];
-            ctx.gpu.queue.write_buffer(uniform, 0, bytemuck::cast_slice(&range));
+            ctx.gpu.queue.write_buffer(uniform, 0, bytemuck::bytes_of(&range));
             let group = bind(
                 device,
                 &self.layout,

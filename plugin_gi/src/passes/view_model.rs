@@ -12,7 +12,7 @@ use engine::passes::names::VIEW_MODEL_IRRADIANCE;
 use engine::wgpu;
 
 use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
-use crate::gpu_types::names;
+use crate::gpu_types::{names, Probe};
 use crate::passes::{module, VIEW_MODEL_PROBE_SHADER};
 use crate::pyramid::FluxPyramid;
 use crate::quadtree::LEVELS;
@@ -75,8 +75,8 @@ impl RenderPass for ViewModelProbePass {
                 w * h <= MAX_NODES
             })
             .unwrap_or(LEVELS - 1);
-        let probe: [u32; 8] = [point.x.to_bits(), point.y.to_bits(), point.z.to_bits(), 0, level, 0, 0, 0];
-        ctx.gpu.queue.write_buffer(&self.probe, 0, bytemuck::cast_slice(&probe));
+        let probe = Probe { position: [point.x, point.y, point.z, 0.0], level: [level, 0, 0, 0] };
+        ctx.gpu.queue.write_buffer(&self.probe, 0, bytemuck::bytes_of(&probe));
         let group = bind(
             &ctx.gpu.device,
             &self.layout,
