@@ -3,6 +3,9 @@
 
 use glam::{Mat4, Quat, Vec3};
 
+/// The vertical field of view a camera has unless a level or the player says otherwise.
+pub const DEFAULT_FOV_Y: f32 = 60.0 * std::f32::consts::PI / 180.0;
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum CameraProjection {
     /// Vertical field of view in radians.

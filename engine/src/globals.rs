@@ -5,9 +5,9 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec4};
 use scene::{LightKind, PunctualLight};
 
-use crate::frame::ViewState;
 use crate::gpu::Gpu;
 use crate::headlamp::{distribution_texels, LampFrustum};
+use crate::view_state::ViewState;
 
 /// Bind group layouts shared by the engine's passes and plugins.
 pub struct CoreLayouts {
@@ -223,7 +223,7 @@ impl GlobalsGpu {
         let (detached, lamp_texel) = if view.headlamp.attached {
             (0.0, 0.0)
         } else {
-            (1.0, 2.0 * (lamp.fov_y * 0.5).tan() / crate::passes::LAMP_MAP_SIZE as f32)
+            (1.0, 2.0 * (lamp.fov_y * 0.5).tan() / crate::headlamp::LAMP_MAP_SIZE as f32)
         };
         let uniform = GlobalsUniform {
             view_proj,

@@ -8,8 +8,8 @@ use bytemuck::{Pod, Zeroable};
 use scene::Vertex;
 use wgpu::util::DeviceExt;
 
-use crate::frame::{Instance, MeshId};
 use crate::gpu::Gpu;
+use crate::view_state::{Instance, MeshId};
 
 /// The per-instance vertex layout matching `InstanceIn` in shaders/scene_surface.wgsl: the
 /// model matrix by columns, then albedo and emissive (locations after `VERTEX_LAYOUT`'s).

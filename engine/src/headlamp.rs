@@ -6,6 +6,9 @@ use scene::{HeadlampProfile, IntensityDistribution};
 
 use crate::camera::{rotation_looking, Camera, CameraProjection};
 
+/// Width and height of the detached lamp's view (every `lamp.*` texture), in texels.
+pub const LAMP_MAP_SIZE: u32 = 1024;
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Headlamp {
     pub on: bool,

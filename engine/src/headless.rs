@@ -1,8 +1,8 @@
 //! Offscreen rendering: a target texture read back to the CPU, no window or display needed.
 
-use crate::frame::ViewState;
 use crate::gpu::Gpu;
 use crate::renderer::Renderer;
+use crate::view_state::ViewState;
 
 /// The two kinds of picture a view can be read back as.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -27,6 +27,7 @@ pub mod replay;
 pub mod shader;
 pub mod start_view;
 pub mod ui;
+pub mod view_state;
 pub mod window;
 
 pub use egui;

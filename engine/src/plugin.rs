@@ -1,43 +1,76 @@
-//! Plugins extend the renderer: one `build` registers their passes and extra views, the way a
-//! Bevy plugin registers its systems. They see the engine's public API only.
+//! Plugins extend the renderer: one `build` registers their passes (each in a stage) and extra
+//! views, the way a Bevy plugin registers its systems. They see the engine's public API only.
 
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
-use crate::graph::{RenderGraph, RenderPass};
-use crate::passes::OutputView;
+use crate::graph::{Buffer, Handle, History, Image, PassOrder, RenderGraph, RenderPass, Stage};
+use crate::passes::{CoreResources, OutputView};
 
 pub trait Plugin {
     fn name(&self) -> &str;
     fn build(&mut self, ctx: &mut PluginContext<'_>);
-    /// Figures about the last frame (e.g. light counts, draw calls), for `bench` and overlays.
-    fn stats(&self) -> Vec<(String, f64)> {
-        Vec::new()
-    }
 }
 
-/// A view `headlamp render --view NAME` can show: a graph resource and how to display it.
+/// A view `headlamp render --view NAME` can show: a graph texture and how to display it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ViewEntry {
     pub name: String,
-    pub source: String,
+    pub source: Handle<Image>,
     pub kind: OutputView,
 }
 
 pub struct PluginContext<'a> {
     pub gpu: &'a Gpu,
     pub layouts: &'a CoreLayouts,
+    pub(crate) core: CoreResources,
     pub(crate) graph: &'a mut RenderGraph,
     pub(crate) views: &'a mut Vec<ViewEntry>,
 }
 
 impl PluginContext<'_> {
-    pub fn add_pass(&mut self, pass: impl RenderPass + 'static) {
-        self.graph.add_pass(Box::new(pass));
+    /// The resources of the engine's own passes (G-buffer, hdr, …).
+    pub fn core(&self) -> &CoreResources {
+        &self.core
     }
 
-    /// Makes the graph resource `source` selectable as view `name`.
-    pub fn add_view(&mut self, name: &str, source: &str, kind: OutputView) {
+    /// Adds a pass to `stage` (see [`RenderGraph::add_pass`]).
+    pub fn add_pass<P: RenderPass>(&mut self, stage: Stage, pass: P) -> PassOrder<'_> {
+        self.graph.add_pass(stage, pass)
+    }
+
+    /// A texture that lives within a frame.
+    pub fn image(&mut self, label: &str) -> Handle<Image> {
+        self.graph.image(label)
+    }
+
+    /// A buffer that lives within a frame.
+    pub fn buffer(&mut self, label: &str) -> Handle<Buffer> {
+        self.graph.buffer(label)
+    }
+
+    /// A texture kept across frames.
+    pub fn persistent_image(&mut self, label: &str) -> Handle<Image> {
+        self.graph.persistent_image(label)
+    }
+
+    /// A buffer kept across frames.
+    pub fn persistent_buffer(&mut self, label: &str) -> Handle<Buffer> {
+        self.graph.persistent_buffer(label)
+    }
+
+    /// A texture with last frame's contents beside this frame's.
+    pub fn history_image(&mut self, label: &str) -> History<Image> {
+        self.graph.history_image(label)
+    }
+
+    /// A buffer with last frame's contents beside this frame's.
+    pub fn history_buffer(&mut self, label: &str) -> History<Buffer> {
+        self.graph.history_buffer(label)
+    }
+
+    /// Makes the graph texture `source` selectable as view `name`.
+    pub fn add_view(&mut self, name: &str, source: Handle<Image>, kind: OutputView) {
         self.views.retain(|v| v.name != name);
-        self.views.push(ViewEntry { name: name.into(), source: source.into(), kind });
+        self.views.push(ViewEntry { name: name.into(), source, kind });
     }
 }

@@ -6,17 +6,21 @@ use std::rc::Rc;
 
 use scene::{Scene, Vertex};
 
-use crate::frame::{Frame, MeshId, ViewState};
+use crate::frame::Frame;
 use crate::globals::{CoreLayouts, GlobalsGpu};
 use crate::gpu::Gpu;
 use crate::gpu_instances::GpuInstances;
 use crate::gpu_scene::GpuScene;
-use crate::graph::{GraphError, ImportedTexture, RenderGraph, SizeRule};
+use crate::graph::{GraphError, ImportedTexture, RenderGraph, SizeRule, Stage};
 use crate::passes::{
-    names, CompositePass, DirectLightPass, GBufferPass, LampViewPass, OutputView, PresentPass, PresentSettings,
-    ViewModelPass, ViewModelProbePass,
+    CompositePass, CoreResources, DirectLightPass, GBufferPass, LampViewPass, OutputView, PresentPass, PresentSettings,
+    ViewModelIrradianceClearPass, ViewModelPass,
 };
 use crate::plugin::{Plugin, PluginContext, ViewEntry};
+use crate::view_state::{MeshId, ViewState};
+
+/// The view size the graph is checked at when it is built.
+const BUILD_CHECK_SIZE: (u32, u32) = (640, 360);
 
 pub struct Renderer {
     layouts: CoreLayouts,
@@ -24,6 +28,7 @@ pub struct Renderer {
     scene: GpuScene,
     instances: GpuInstances,
     graph: RenderGraph,
+    core: CoreResources,
     present: Rc<RefCell<PresentSettings>>,
     views: Vec<ViewEntry>,
     plugins: Vec<Box<dyn Plugin>>,
@@ -36,42 +41,56 @@ impl Renderer {
         let layouts = CoreLayouts::new(&gpu.device);
         let globals = GlobalsGpu::new(gpu, &layouts);
         let gpu_scene = GpuScene::upload(gpu, &layouts, scene);
-        let present = Rc::new(RefCell::new(PresentSettings { source: names::HDR.into(), kind: OutputView::Radiance }));
-
         let mut graph = RenderGraph::new();
-        graph.import(names::OUTPUT);
-        graph.add_pass(Box::new(GBufferPass::new(gpu, &layouts, &gpu_scene)));
+        let core = CoreResources::register(&mut graph);
+        let present = Rc::new(RefCell::new(PresentSettings { source: core.hdr, kind: OutputView::Radiance }));
+        graph.add_pass(Stage::GBuffer, GBufferPass::new(gpu, &layouts, &gpu_scene, &core));
         // Declares the same resources whether the lamp is attached or not (it records nothing
         // while attached), so putting the lamp down or picking it up never recompiles the graph.
-        graph.add_pass(Box::new(LampViewPass::new(gpu, &layouts, &gpu_scene)));
-        graph.add_pass(Box::new(DirectLightPass::new(gpu, &layouts)));
-        graph.add_pass(Box::new(CompositePass::new(gpu, &layouts)));
-        // Creates the view models' irradiance (zero) before any plugin writes into it.
-        graph.add_pass(Box::new(ViewModelProbePass));
-        graph.add_pass(Box::new(PresentPass::new(gpu, &layouts, present.clone())));
+        graph.add_pass(Stage::GBuffer, LampViewPass::new(gpu, &layouts, &gpu_scene, core.lamp));
+        graph.add_pass(Stage::Lighting, DirectLightPass::new(gpu, &layouts, &core));
+        // Zero unless a plugin writes it (in a later stage).
+        graph.add_pass(Stage::Lighting, ViewModelIrradianceClearPass(core.view_model_irradiance));
+        graph.add_pass(Stage::Composite, CompositePass::new(gpu, &layouts, &core));
+        graph.add_pass(Stage::ViewModels, ViewModelPass::new(gpu, &layouts, &core));
+        graph.add_pass(Stage::Present, PresentPass::new(gpu, &layouts, present.clone(), core.output));
 
-        let view = |name: &str, source: &str, kind| ViewEntry { name: name.into(), source: source.into(), kind };
+        let view = |name: &str, source, kind| ViewEntry { name: name.into(), source, kind };
         let mut views = vec![
-            view("final", names::HDR, OutputView::Radiance),
-            view("direct", names::DIRECT, OutputView::Radiance),
-            view("albedo", names::GBUFFER_ALBEDO, OutputView::Color),
-            view("normal", names::GBUFFER_NORMAL, OutputView::Normal),
-            view("depth", names::GBUFFER_POSITION, OutputView::Depth),
+            view("final", core.hdr, OutputView::Radiance),
+            view("direct", core.direct, OutputView::Radiance),
+            view("albedo", core.gbuffer.albedo, OutputView::Color),
+            view("normal", core.gbuffer.normal, OutputView::Normal),
+            view("depth", core.gbuffer.position, OutputView::Depth),
             // The detached lamp's own G-buffer, scaled to the output (black while attached).
-            view("lamp_albedo", names::LAMP_ALBEDO, OutputView::Color),
-            view("lamp_normal", names::LAMP_NORMAL, OutputView::Normal),
-            view("lamp_depth", names::LAMP_POSITION, OutputView::Depth),
+            view("lamp_albedo", core.lamp.albedo, OutputView::Color),
+            view("lamp_normal", core.lamp.normal, OutputView::Normal),
+            view("lamp_depth", core.lamp.position, OutputView::Depth),
         ];
         for plugin in &mut plugins {
-            let mut ctx = PluginContext { gpu, layouts: &layouts, graph: &mut graph, views: &mut views };
+            let mut ctx = PluginContext { gpu, layouts: &layouts, core, graph: &mut graph, views: &mut views };
             plugin.build(&mut ctx);
             log::info!("plugin '{}' built", plugin.name());
         }
-        // Registered last of everything writing `hdr`, so it draws over what plugins add there.
-        graph.add_pass(Box::new(ViewModelPass::new(gpu, &layouts)));
-        graph.compile()?;
+        // An unclear graph is an error now, not when a view or the lamp changes what it declares.
+        let mut detached = ViewState::default();
+        detached.headlamp.detach_at(&detached.camera.clone());
+        for view in [ViewState::default(), detached] {
+            graph.compile(BUILD_CHECK_SIZE, &view)?;
+        }
         let instances = GpuInstances::new(gpu);
-        Ok(Self { layouts, globals, scene: gpu_scene, instances, graph, present, views, plugins, render_scale: 1.0 })
+        Ok(Self {
+            layouts,
+            globals,
+            scene: gpu_scene,
+            instances,
+            graph,
+            core,
+            present,
+            views,
+            plugins,
+            render_scale: 1.0,
+        })
     }
 
     /// Uploads a mesh that [`crate::frame::Instance`]s can place (see [`crate::primitives`]).
@@ -103,6 +122,18 @@ impl Renderer {
         &self.graph
     }
 
+    /// The resources of the engine's own passes.
+    pub fn core(&self) -> &CoreResources {
+        &self.core
+    }
+
+    /// Starts every history and persistent resource of the graph from zeros at the next frame:
+    /// for cuts (a level loaded, a restart, a teleport, the lamp set down or picked up), where
+    /// last frame's light says nothing of this one's.
+    pub fn reset_history(&mut self) {
+        self.graph.reset_history();
+    }
+
     /// Times each render-graph pass on the GPU from the next frame on (opt-in, for `bench`;
     /// nothing is recorded while off). Has no effect where [`Gpu::timestamps`] is false.
     pub fn set_timing(&mut self, on: bool) {
@@ -121,7 +152,7 @@ impl Renderer {
             let known: Vec<&str> = self.views.iter().map(|v| v.name.as_str()).collect();
             format!("unknown view '{name}' (expected one of: {})", known.join(", "))
         })?;
-        let wanted = PresentSettings { source: entry.source.clone(), kind: entry.kind };
+        let wanted = PresentSettings { source: entry.source, kind: entry.kind };
         *self.present.borrow_mut() = wanted;
         Ok(())
     }
@@ -151,7 +182,7 @@ impl Renderer {
             globals: &self.globals.bind_group,
         };
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
-        let imports = [ImportedTexture { name: names::OUTPUT, texture: target, view: target_view }];
+        let imports = [ImportedTexture { handle: self.core.output, texture: target, view: target_view }];
         self.graph.execute(gpu, &frame, &mut encoder, &imports)?;
         Ok(gpu.queue.submit([encoder.finish()]))
     }

@@ -5,11 +5,10 @@ use glam::Vec3;
 use scene::{Level, Projection, Scene};
 
 use crate::camera::{Camera, CameraProjection};
-use crate::frame::ViewState;
 use crate::headlamp::Headlamp;
+use crate::view_state::ViewState;
 
-/// Vertical field of view used when neither the user nor the file names one.
-pub const DEFAULT_FOV_Y: f32 = 60.0 * std::f32::consts::PI / 180.0;
+pub use crate::camera::DEFAULT_FOV_Y;
 
 /// Overrides from the command line.
 #[derive(Clone, Copy, Debug, Default)]

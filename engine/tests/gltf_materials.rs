@@ -16,7 +16,7 @@ use engine::glam::{Quat, Vec2, Vec3};
 use engine::gpu::Gpu;
 use engine::headlamp::Headlamp;
 use engine::headless::{read_texture, HeadlessTarget, ImageKind, RenderedImage};
-use engine::passes::{names, LAMP_MAP_SIZE};
+use engine::passes::LAMP_MAP_SIZE;
 use engine::renderer::Renderer;
 use engine::scene::{
     encode_base64 as base64, load_gltf, AlphaMode, Filter, HeadlampProfile, IntensityDistribution, Material, Mesh,
@@ -587,10 +587,10 @@ fn a_mask_cut_out_lets_the_detached_lamp_through_to_the_floor_and_into_its_own_g
 
     // The lamp's own G-buffer (the GI's reflective shadow map) sees the floor through the hole.
     let read = |name| {
-        let texture = renderer.graph().physical_texture(name).unwrap_or_else(|| panic!("{name} is not allocated"));
+        let texture = renderer.graph().texture_by_label(name).unwrap_or_else(|| panic!("{name} is not allocated"));
         read_texture(&gpu, texture)
     };
-    let (positions, albedos) = (read(names::LAMP_POSITION), read(names::LAMP_ALBEDO));
+    let (positions, albedos) = (read("lamp.position"), read("lamp.albedo"));
     let tan_half = (FOV_Y * 0.5).tan();
     let (mut through, mut blocked) = (0, 0);
     for ty in (0..LAMP_MAP_SIZE).step_by(8) {

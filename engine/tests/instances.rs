@@ -10,7 +10,7 @@ use engine::glam::{Mat4, Quat, Vec3};
 use engine::gpu::Gpu;
 use engine::headlamp::Headlamp;
 use engine::headless::{read_texture, HeadlessTarget, ImageKind, RenderedImage};
-use engine::passes::{names, LAMP_MAP_SIZE};
+use engine::passes::LAMP_MAP_SIZE;
 use engine::primitives;
 use engine::renderer::Renderer;
 use engine::scene::Scene;
@@ -153,7 +153,7 @@ fn an_instance_between_a_detached_lamp_and_a_wall_casts_a_shadow_on_it() {
     assert_close(rgb(&direct, lit), want, 0.01, "the wall outside the shadow");
 
     // The lamp's view holds the cube: its albedo at the centre of the lamp map.
-    let texture = renderer.graph().physical_texture(names::LAMP_ALBEDO).unwrap();
+    let texture = renderer.graph().physical_texture(renderer.core().lamp.albedo).unwrap();
     let bytes = read_texture(&gpu, texture);
     let i = ((LAMP_MAP_SIZE / 2) * LAMP_MAP_SIZE + LAMP_MAP_SIZE / 2) as usize * 8;
     let albedo: Vec<f32> =

@@ -9,7 +9,6 @@ use engine::glam::{Mat4, Vec3};
 use engine::gpu::Gpu;
 use engine::headlamp::Headlamp;
 use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
-use engine::passes::names;
 use engine::primitives;
 use engine::renderer::Renderer;
 use engine::scene::{HeadlampProfile, Material, Mesh, Scene, Vertex};
@@ -86,7 +85,7 @@ fn half_scale_renders_a_full_size_picture_like_the_full_scale_one() {
     let full = render(&gpu, &mut renderer, &view, "final");
     renderer.set_render_scale(0.5);
     let half = render(&gpu, &mut renderer, &view, "final");
-    let albedo = renderer.graph().physical_texture(names::GBUFFER_ALBEDO).unwrap();
+    let albedo = renderer.graph().physical_texture(renderer.core().gbuffer.albedo).unwrap();
     assert_eq!((albedo.width(), albedo.height()), (SIZE.0 / 2, SIZE.1 / 2), "the G-buffer is half size");
     assert_eq!(half.dimensions(), SIZE, "the picture is full size");
     let difference = mean_difference(&full, &half);
@@ -120,11 +119,11 @@ fn the_scale_is_clamped_and_fixed_size_lamp_maps_are_shown_as_before() {
     let full = render(&gpu, &mut renderer, &view, "lamp_albedo");
     renderer.set_render_scale(0.25);
     let quarter = render(&gpu, &mut renderer, &view, "lamp_albedo");
-    let lamp = renderer.graph().physical_texture(names::LAMP_ALBEDO).unwrap();
+    let lamp = renderer.graph().physical_texture(renderer.core().lamp.albedo).unwrap();
     assert_eq!(lamp.width(), engine::passes::LAMP_MAP_SIZE, "lamp maps keep their size");
     assert!(full.as_raw() == quarter.as_raw(), "the lamp's view changed with the render scale");
     // While the camera's own views shrink to a quarter.
     render(&gpu, &mut renderer, &view, "albedo");
-    let albedo = renderer.graph().physical_texture(names::GBUFFER_ALBEDO).unwrap();
+    let albedo = renderer.graph().physical_texture(renderer.core().gbuffer.albedo).unwrap();
     assert_eq!((albedo.width(), albedo.height()), (SIZE.0 / 4, SIZE.1 / 4));
 }

@@ -10,7 +10,7 @@ use engine::glam::{Quat, Vec3};
 use engine::gpu::Gpu;
 use engine::headlamp::Headlamp;
 use engine::headless::{read_texture, HeadlessTarget, ImageKind, RenderedImage};
-use engine::passes::{names, LAMP_MAP_SIZE};
+use engine::passes::LAMP_MAP_SIZE;
 use engine::renderer::Renderer;
 use engine::scene::{HeadlampProfile, IntensityDistribution, Material, Mesh, Scene, Vertex};
 
@@ -276,7 +276,7 @@ fn picking_the_lamp_up_again_restores_the_attached_frame_exactly() {
 
 /// `lamp.*` of the last frame, read back from the graph.
 fn lamp_map(gpu: &Gpu, renderer: &Renderer, name: &str) -> Vec<u8> {
-    let texture = renderer.graph().physical_texture(name).unwrap_or_else(|| panic!("{name} is not allocated"));
+    let texture = renderer.graph().texture_by_label(name).unwrap_or_else(|| panic!("{name} is not allocated"));
     assert_eq!((texture.width(), texture.height()), (LAMP_MAP_SIZE, LAMP_MAP_SIZE), "{name}");
     read_texture(gpu, texture)
 }
@@ -302,10 +302,10 @@ fn the_lamp_view_holds_world_position_normal_and_albedo() {
     let camera = Camera::perspective(Vec3::new(0.0, 1.6, 5.0), Quat::IDENTITY, FOV_Y);
     render(&gpu, &mut renderer, &view(camera, lamp.clone()));
 
-    let positions = lamp_map(&gpu, &renderer, names::LAMP_POSITION);
-    let normals = lamp_map(&gpu, &renderer, names::LAMP_NORMAL);
-    let albedos = lamp_map(&gpu, &renderer, names::LAMP_ALBEDO);
-    let depths = lamp_map(&gpu, &renderer, names::LAMP_DEPTH);
+    let positions = lamp_map(&gpu, &renderer, "lamp.position");
+    let normals = lamp_map(&gpu, &renderer, "lamp.normal");
+    let albedos = lamp_map(&gpu, &renderer, "lamp.albedo");
+    let depths = lamp_map(&gpu, &renderer, "lamp.depth");
     let facing = if normal.dot(eye - plane.centre) < 0.0 { -normal } else { normal };
     assert!(facing.dot(normal) < 0.0, "the test wants a plane facing away from the lamp");
 

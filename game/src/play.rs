@@ -170,6 +170,9 @@ pub struct GameWindow {
     reflection_lights: Option<u32>,
     /// Frames drawn since the overlay was opened.
     frames: u32,
+    /// A restart or the lamp set down, thrown or picked up since the last frame: the renderer's
+    /// history is reset before the next (a new level brings a new renderer).
+    light_cut: bool,
     gi_panel_open: bool,
     quit: bool,
     /// The level being played, for live reload (None while watching a replay).
@@ -221,6 +224,7 @@ impl GameWindow {
             pass_times: Vec::new(),
             reflection_lights: None,
             frames: 0,
+            light_cut: false,
             gi_panel_open: false,
             quit: false,
             level_path: None,
@@ -290,6 +294,7 @@ impl GameWindow {
                     *next += 1;
                 }
             }
+            self.light_cut |= self.sim.events.iter().any(crate::sim::Event::cuts_the_light);
             self.messages.push_events(&self.sim.events, &self.sim.state, self.config.captions);
             self.sound.hear(&self.sim.events, &self.sim.state, &self.sim.world());
             self.ticks_this_frame += 1;
@@ -305,6 +310,7 @@ impl GameWindow {
         self.prev = self.sim.state.clone();
         self.clock = FixedClock::new(self.sim.tick_rate());
         self.since_outcome = 0.0;
+        self.light_cut = true;
         self.messages = Messages::default();
         if let TickSource::Live { sampler, recorder: Some(r) } = &mut self.source {
             sampler.clear();
@@ -668,6 +674,9 @@ impl WindowApp for GameWindow {
             self.make_thumbnail(gpu, i);
         }
         let renderer = self.renderer.as_mut().expect("init runs before render");
+        if std::mem::take(&mut self.light_cut) {
+            renderer.reset_history();
+        }
         renderer.render(gpu, &self.view.view, target, view)?;
         self.frames += 1;
         // The first timed frame is the one after opening; then every TIMING_EVERY.

@@ -145,6 +145,8 @@ impl SnapshotRenderer {
 
     fn shoot(&mut self, sim: &Simulation) -> anyhow::Result<image::RgbaImage> {
         self.view.at(sim.entities(), &sim.state);
+        // Snapshots are far apart in time: each is a cut for the renderer's history.
+        self.renderer.reset_history();
         match self.target.render(&self.gpu, &mut self.renderer, &self.view.view)? {
             RenderedImage::Display(image) => Ok(image),
             RenderedImage::Linear(_) => bail!("a display target rendered linear values"),

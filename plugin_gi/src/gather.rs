@@ -2,19 +2,29 @@
 //! an 8×8 tile sharing one cut through the pyramid. Three dispatches: the cuts, one invocation
 //! a tile, then the few tiles whose cut filled up walked again side by side (an indirect
 //! dispatch; both shaders/gi/cuts.wgsl), then the sum, one workgroup a tile
-//! (shaders/gi/gather.wgsl).
+//! (shaders/gi/gather.wgsl). The cuts buffer is a graph resource (see [`cuts_desc`]); the
+//! bands' small buffers are this gather's own scratch.
 
+use engine::graph::BufferDesc;
 use engine::wgpu;
+use engine::wgpu::util::DeviceExt;
 
 use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
 use crate::gpu_types::{Band, GATHER_STATS_SIZE, RETRY_HEADER};
-use crate::passes::{module, CUTS_SHADER, GATHER_SHADER};
-use crate::pyramid::PyramidBuffers;
 use crate::quadtree::Quadtree;
-use engine::wgpu::util::DeviceExt;
+use crate::shader::module;
+
+pub const CUTS_SHADER: &str = include_str!("../../shaders/gi/cuts.wgsl");
+pub const GATHER_SHADER: &str = include_str!("../../shaders/gi/gather.wgsl");
 
 /// What one gather reads and writes.
 pub struct GatherTargets<'a> {
+    /// The GiParams of this bounce, the pyramid's level table and nodes.
+    pub params: &'a wgpu::Buffer,
+    pub levels: &'a wgpu::Buffer,
+    pub nodes: &'a wgpu::Buffer,
+    /// Room for one band's cuts ([`cuts_desc`]).
+    pub cuts: &'a wgpu::Buffer,
     pub normal: &'a wgpu::TextureView,
     pub position: &'a wgpu::TextureView,
     /// Irradiance out (Rgba32Float storage): this bounce's plus `accumulate`'s.
@@ -30,7 +40,6 @@ pub struct GatherTargets<'a> {
 }
 
 pub struct Gather {
-    params: wgpu::Buffer,
     cuts_layout: wgpu::BindGroupLayout,
     cuts_pipeline: wgpu::ComputePipeline,
     /// The indirect dispatch's arguments, written by the cuts pass (its group 2).
@@ -38,9 +47,9 @@ pub struct Gather {
     retry_pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
-    /// The cuts of one band of tile rows, sized to the last indirect target and pyramid
-    /// (see [`Bands`]), and per band its first row (a uniform) and its full tiles.
-    cuts: Option<(Bands, wgpu::Buffer, Vec<BandBuffers>)>,
+    /// Per band of the last indirect target and pyramid (see [`Bands`]), its first row (a
+    /// uniform) and its full tiles.
+    bands: Option<(Bands, Vec<BandBuffers>)>,
 }
 
 /// What one band's dispatches share besides the cuts.
@@ -64,8 +73,20 @@ pub const CUT_MAX: u32 = 1536;
 const CUTS_GROUP: u32 = 8;
 
 /// At most this much memory holds the cuts: a larger target is gathered a band of tile rows
-/// at a time (two dispatches a band), so no setting can ask for an unbounded buffer.
+/// at a time (two dispatches a band), so no setting can ask for an unbounded buffer. Below
+/// the 128 MiB storage binding every wgpu device allows.
 const CUTS_BUDGET_BYTES: u64 = 32 << 20;
+
+/// The bands an indirect target of `size` is gathered in, over a pyramid on a flux G-buffer
+/// of `flux_size`.
+pub fn bands(size: (u32, u32), flux_size: (u32, u32)) -> Bands {
+    Bands::new(size, &Quadtree::new(flux_size.0, flux_size.1), CUTS_BUDGET_BYTES)
+}
+
+/// The cuts buffer of one band.
+pub fn cuts_desc(bands: &Bands) -> BufferDesc {
+    BufferDesc { size: bands.bytes(), usage: wgpu::BufferUsages::STORAGE }
+}
 
 /// How the tiles of an indirect target are gathered: `rows` tile rows at a time, `count`
 /// times, each tile's cut `stride` vec4s (its counts, its centre, then one a light with room
@@ -96,7 +117,7 @@ impl Bands {
 }
 
 impl Gather {
-    pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, params: wgpu::Buffer) -> Self {
+    pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout) -> Self {
         let storage = |read_only| S::Storage { read_only };
         let cuts_layout = layout(
             device,
@@ -147,28 +168,20 @@ impl Gather {
         );
         let module = module(device, "gi gather", GATHER_SHADER);
         let pipeline = compute_pipeline(device, "gi gather", &module, "main", &[Some(globals), Some(&layout)]);
-        Self { params, cuts_layout, cuts_pipeline, retry_args_layout, retry_pipeline, layout, pipeline, cuts: None }
+        Self { cuts_layout, cuts_pipeline, retry_args_layout, retry_pipeline, layout, pipeline, bands: None }
     }
 
-    /// Records the gather into an indirect target of `size`; returns the number of dispatches.
+    /// Records the gather in `bands` (from [`bands`], as `t.cuts` was sized); returns the
+    /// number of dispatches.
     pub fn record(
         &mut self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         globals: &wgpu::BindGroup,
-        pyramid: &PyramidBuffers,
-        size: (u32, u32),
+        bands: Bands,
         t: &GatherTargets<'_>,
     ) -> u32 {
-        let budget = CUTS_BUDGET_BYTES.min(device.limits().max_storage_buffer_binding_size);
-        let bands = Bands::new(size, &pyramid.tree, budget);
-        if self.cuts.as_ref().is_none_or(|(b, _, _)| *b != bands) {
-            let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("gi cuts"),
-                size: bands.bytes(),
-                usage: wgpu::BufferUsages::STORAGE,
-                mapped_at_creation: false,
-            });
+        if self.bands.as_ref().is_none_or(|(b, _)| *b != bands) {
             let tiles_per_band = u64::from(bands.tiles.0 * bands.rows);
             let per_band = (0..bands.count)
                 .map(|i| BandBuffers {
@@ -197,9 +210,10 @@ impl Gather {
                     }),
                 })
                 .collect();
-            self.cuts = Some((bands, buffer, per_band));
+            self.bands = Some((bands, per_band));
         }
-        let (_, cuts, per_band) = self.cuts.as_ref().expect("sized above");
+        let (_, per_band) = self.bands.as_ref().expect("sized above");
+        let cuts = t.cuts;
         encoder.clear_buffer(t.stats, 0, Some(GATHER_STATS_SIZE));
         for band in per_band {
             // The cuts pass sets the arguments' y and z, and counts x up from 0.
@@ -215,9 +229,9 @@ impl Gather {
                 device,
                 &self.cuts_layout,
                 &[
-                    R::Buffer(&self.params),
-                    R::Buffer(&pyramid.levels),
-                    R::Buffer(&pyramid.nodes),
+                    R::Buffer(t.params),
+                    R::Buffer(t.levels),
+                    R::Buffer(t.nodes),
                     R::View(t.normal),
                     R::View(t.position),
                     R::Buffer(cuts),
@@ -232,8 +246,8 @@ impl Gather {
                 device,
                 &self.layout,
                 &[
-                    R::Buffer(&self.params),
-                    R::Buffer(&pyramid.levels),
+                    R::Buffer(t.params),
+                    R::Buffer(t.levels),
                     R::View(t.normal),
                     R::View(t.position),
                     R::View(t.irradiance),
@@ -264,7 +278,7 @@ mod tests {
 
     #[test]
     fn the_shaders_share_the_cut_layout() {
-        let common = crate::passes::INCLUDES[0].1;
+        let common = crate::shader::INCLUDES[0].1;
         assert!(common.contains(&format!("const CUT_TILE: u32 = {TILE}u;")), "gi_common.wgsl's CUT_TILE is {TILE}");
         assert!(common.contains(&format!("const CUT_MAX: u32 = {CUT_MAX}u;")), "gi_common.wgsl's CUT_MAX is {CUT_MAX}");
     }

@@ -15,18 +15,19 @@ mod passes;
 mod pyramid;
 pub mod quadtree;
 pub mod readback;
+mod resources;
 mod settings;
+mod shader;
 mod shared;
 
-use std::cell::RefCell;
-use std::rc::Rc;
-
+use engine::graph::Stage;
 use engine::passes::OutputView;
 use engine::plugin::{Plugin, PluginContext};
 
 pub use gpu_types::{names, ReflectionLight};
-pub use passes::{INCLUDES as SHADER_INCLUDES, SHADERS};
+pub use passes::SHADERS;
 pub use settings::{FieldInfo, GiSettings, RETIRED};
+pub use shader::INCLUDES as SHADER_INCLUDES;
 pub use shared::{GiHandle, GiStats};
 
 pub struct GiPlugin {
@@ -52,29 +53,24 @@ impl Plugin for GiPlugin {
     }
 
     fn build(&mut self, ctx: &mut PluginContext<'_>) {
-        let device = &ctx.gpu.device;
-        let globals = &ctx.layouts.globals;
-        let gpu = Rc::new(shared::GpuShared {
-            params: bindings::uniform_buffer(device, "gi params", std::mem::size_of::<gpu_types::GiParams>() as u64),
-        });
-        let pyramid = Rc::new(RefCell::new(pyramid::FluxPyramid::new(device, globals, gpu.params.clone())));
-        let handle = &self.handle;
-        ctx.add_pass(passes::FluxPass::new(handle.clone(), gpu.clone(), pyramid.clone()));
-        ctx.add_pass(passes::GatherPass::new(device, globals, handle.clone(), gpu.clone(), pyramid.clone()));
-        ctx.add_pass(passes::ViewModelProbePass::new(device, globals, handle.clone(), pyramid));
-        ctx.add_pass(passes::BouncePass::new(device, globals, handle.clone()));
-        ctx.add_pass(passes::CompositePass::new(device, globals, handle.clone(), gpu.clone()));
-        ctx.add_pass(passes::IndirectViewPass::new(device, globals, handle.clone(), gpu.clone()));
-        ctx.add_pass(passes::LightsViewPass::new(device, globals));
-        ctx.add_pass(passes::ReferencePass::new(device, globals, handle.clone(), gpu));
-        ctx.add_view("indirect", names::INDIRECT, OutputView::Radiance);
-        ctx.add_view("flux", names::FLUX_VIEW, OutputView::Color);
-        ctx.add_view("lights", names::LIGHTS_VIEW, OutputView::Color);
-        ctx.add_view("reference", names::REFERENCE, OutputView::Radiance);
-    }
-
-    fn stats(&self) -> Vec<(String, f64)> {
-        let s = self.handle.stats();
-        vec![("gi_dispatches".into(), s.dispatches as f64), ("gi_draws".into(), s.draws as f64)]
+        let (device, globals) = (&ctx.gpu.device.clone(), &ctx.layouts.globals.clone());
+        let (core, gi, handle) = (*ctx.core(), resources::GiResources::register(ctx), self.handle.clone());
+        let shared = (handle.clone(), core, gi);
+        let (params, irradiance) = (gi.params, core.view_model_irradiance);
+        ctx.add_pass(Stage::Indirect, passes::GiParamsPass { handle: handle.clone(), params });
+        ctx.add_pass(Stage::Indirect, passes::FluxPass::new(device, globals, handle.clone(), core, gi));
+        ctx.add_pass(Stage::Indirect, passes::GatherPass::new(device, globals, handle.clone(), core, gi));
+        let probe = passes::ViewModelIrradiancePass::new(device, globals, handle.clone(), gi, irradiance);
+        ctx.add_pass(Stage::Indirect, probe);
+        ctx.add_pass(Stage::Indirect, passes::BouncePass::new(device, globals, handle.clone(), core, gi));
+        ctx.add_pass(Stage::Indirect, passes::ReferencePass::new(device, globals, handle, core, gi));
+        ctx.add_pass(Stage::Composite, passes::IndirectCompositePass::new(device, globals, shared.clone()));
+        ctx.add_pass(Stage::Composite, passes::IndirectViewPass::new(device, globals, shared));
+        // It draws over the finished frame, view models included, so it comes with the present.
+        ctx.add_pass(Stage::Present, passes::LightsViewPass::new(device, globals, gi, core.hdr));
+        ctx.add_view("indirect", gi.indirect, OutputView::Radiance);
+        ctx.add_view("flux", gi.flux_view, OutputView::Color);
+        ctx.add_view("lights", gi.lights_view, OutputView::Color);
+        ctx.add_view("reference", gi.reference, OutputView::Radiance);
     }
 }

@@ -11,7 +11,7 @@ use crate::gpu_types::{names, GatherStats, ReflectionLight};
 /// cut through the pyramid.
 pub fn lights(gpu: &Gpu, renderer: &Renderer) -> Option<Vec<ReflectionLight>> {
     let count = gather_stats(gpu, renderer)?.instance_count as usize;
-    let bytes = read_buffer(gpu, renderer.graph().physical_buffer(names::LIGHTS)?);
+    let bytes = read_buffer(gpu, renderer.graph().buffer_by_label(names::LIGHTS)?);
     let all: &[ReflectionLight] = bytemuck::cast_slice(&bytes);
     Some(all[..count.min(all.len())].to_vec())
 }
@@ -41,13 +41,13 @@ pub fn cut_stats(gpu: &Gpu, renderer: &Renderer) -> Option<CutStats> {
 
 /// The gather's counters of the last frame.
 fn gather_stats(gpu: &Gpu, renderer: &Renderer) -> Option<GatherStats> {
-    let bytes = read_buffer(gpu, renderer.graph().physical_buffer(names::STATS)?);
+    let bytes = read_buffer(gpu, renderer.graph().buffer_by_label(names::STATS)?);
     Some(bytemuck::pod_read_unaligned(bytes.get(..std::mem::size_of::<GatherStats>())?))
 }
 
 /// Σ Φ over the last frame's flux G-buffer, per channel (W), summed in f64.
 pub fn gbuffer_flux(gpu: &Gpu, renderer: &Renderer) -> Option<[f64; 3]> {
-    let bytes = read_texture(gpu, renderer.graph().physical_texture(names::FLUX)?);
+    let bytes = read_texture(gpu, renderer.graph().texture_by_label(names::FLUX)?);
     let texels: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
     Some(sum3(texels.iter().map(|t| [t[0], t[1], t[2]])))
 }

@@ -1,11 +1,11 @@
-//! State shared by the GI passes and the game: settings in, figures out.
+//! What the game shares with the GI passes: the settings in (read by the passes), and the
+//! figures of the last frame out (from the render graph's own count of each pass's calls).
 
 use std::cell::RefCell;
 use std::rc::Rc;
 
-use engine::wgpu;
+use engine::renderer::Renderer;
 
-use crate::gpu_types::GiParams;
 use crate::settings::GiSettings;
 
 /// Per-frame figures of the GI. Draws and dispatches depend on the number of bounces, never on
@@ -18,16 +18,23 @@ pub struct GiStats {
     pub draws: u32,
 }
 
-/// The game's handle on the plugin: change settings live, read the last frame's figures.
+impl GiStats {
+    /// The calls of the GI's passes (their names begin with `gi_`) in the renderer's last frame.
+    pub fn of(renderer: &Renderer) -> Self {
+        let gi = renderer.graph().last_calls().iter().filter(|(name, _)| name.starts_with("gi_"));
+        gi.fold(Self::default(), |s, (_, c)| Self { dispatches: s.dispatches + c.dispatches, draws: s.draws + c.draws })
+    }
+}
+
+/// The game's handle on the plugin: change settings live.
 #[derive(Clone, Default)]
-pub struct GiHandle(pub(crate) Rc<RefCell<Shared>>);
+pub struct GiHandle(Rc<RefCell<Shared>>);
 
 #[derive(Default)]
-pub(crate) struct Shared {
-    pub settings: GiSettings,
-    pub stats: GiStats,
+struct Shared {
+    settings: GiSettings,
     /// See [`GiHandle::set_reference_stride`]; 0 stands for 1.
-    pub reference_stride: u32,
+    reference_stride: u32,
 }
 
 impl GiHandle {
@@ -36,9 +43,6 @@ impl GiHandle {
     }
     pub fn set_settings(&self, settings: GiSettings) {
         self.0.borrow_mut().settings = settings;
-    }
-    pub fn stats(&self) -> GiStats {
-        self.0.borrow().stats
     }
 
     /// For tools that check the `reference` view against finer senders: it then evaluates only
@@ -53,16 +57,5 @@ impl GiHandle {
 
     pub fn reference_stride(&self) -> u32 {
         self.0.borrow().reference_stride.max(1)
-    }
-}
-
-/// GPU objects every GI pass binds: the per-frame parameters.
-pub(crate) struct GpuShared {
-    pub params: wgpu::Buffer,
-}
-
-impl GpuShared {
-    pub fn write_params(&self, queue: &wgpu::Queue, params: &GiParams) {
-        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(params));
     }
 }

@@ -132,7 +132,7 @@ fn the_gi_works_at_half_render_scale() {
     let full_reference = render_linear(&gpu, &mut r, &view, "reference", SIZE);
     r.renderer.set_render_scale(0.5);
     let half = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
-    let flux = r.renderer.graph().physical_texture(plugin_gi::names::FLUX).unwrap();
+    let flux = r.renderer.graph().texture_by_label(plugin_gi::names::FLUX).unwrap();
     assert_eq!((flux.width(), flux.height()), (SIZE.0 / 2, SIZE.1 / 2));
     let reference = render_linear(&gpu, &mut r, &view, "reference", SIZE);
     let (against_reference, against_full) = (block_error(&half, &reference), block_error(&half, &full));

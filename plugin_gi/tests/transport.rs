@@ -70,7 +70,7 @@ fn a_tiles_cut_carries_all_of_the_gbuffer_flux_at_every_split_ratio() {
             assert!(rel < 1e-4, "split {split_ratio}, channel {c}: lights carry {} W of {} W", carried[c], total[c]);
         }
         let cut = readback::cut_stats(&gpu, &r.renderer).unwrap();
-        let stats = r.handle.stats();
+        let stats = plugin_gi::GiStats::of(&r.renderer);
         println!(
             "split {split_ratio}: centre tile {} lights, {:.0} per tile, {} tiles full, {} calls",
             lights.len(),
@@ -107,12 +107,9 @@ struct Texel {
 /// The visible texels of the last frame, read back from the G-buffer.
 fn texels(gpu: &engine::gpu::Gpu, r: &GiRender, (w, h): (u32, u32), camera: &Camera) -> Vec<Texel> {
     let graph = r.renderer.graph();
-    let texture = |name: &str| read_texture(gpu, graph.physical_texture(name).unwrap_or_else(|| panic!("{name}")));
-    let (albedo, normal, position) = (
-        texture(engine::passes::names::GBUFFER_ALBEDO),
-        texture(engine::passes::names::GBUFFER_NORMAL),
-        texture(engine::passes::names::GBUFFER_POSITION),
-    );
+    let texture = |name: &str| read_texture(gpu, graph.texture_by_label(name).unwrap_or_else(|| panic!("{name}")));
+    let (albedo, normal, position) =
+        (texture("gbuffer.albedo"), texture("gbuffer.normal"), texture("gbuffer.position"));
     let halves = |bytes: &[u8], i: usize| {
         bytemuck::cast_slice::<u8, [u16; 4]>(bytes)[i].map(|b| half::f16::from_bits(b).to_f64())
     };
@@ -261,7 +258,7 @@ fn check_reference_against_the_cpu(
     let mut r = renderer(&gpu, &cornell_box(), settings);
     // The flux G-buffer is the gather's input (the reference computes its own, per texel).
     render_linear(&gpu, &mut r, view, "indirect", size);
-    let flux_bytes = read_texture(&gpu, r.renderer.graph().physical_texture(names::FLUX).unwrap());
+    let flux_bytes = read_texture(&gpu, r.renderer.graph().texture_by_label(names::FLUX).unwrap());
     let reference = render_linear(&gpu, &mut r, view, "reference", size);
     let texels = texels(&gpu, &r, size, &view.camera);
     let beyond = texels.iter().filter(|t| t.pixel.1 * size.0 + t.pixel.0 > 65_535).count();
@@ -343,7 +340,7 @@ fn more_bounces_add_less_and_less_light() {
         .map(|bounces| {
             let mut r = renderer(&gpu, &cornell_box(), GiSettings { bounces, ..GiSettings::default() });
             let img = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
-            let stats = r.handle.stats();
+            let stats = plugin_gi::GiStats::of(&r.renderer);
             println!("bounces {bounces}: {stats:?}");
             img.pixels().map(|p| (p[0] + p[1] + p[2]) as f64).sum()
         })

@@ -9,7 +9,6 @@ use common::*;
 use engine::frame::{Instance, MeshId, ViewState};
 use engine::glam::{Mat4, Quat, Vec3};
 use engine::headless::read_buffer;
-use engine::passes::names::VIEW_MODEL_IRRADIANCE;
 use engine::primitives;
 use plugin_gi::{readback, GiSettings};
 
@@ -71,7 +70,7 @@ fn a_view_model_adds_no_flux_and_changes_no_indirect_light() {
 
 /// The ambient cube the GI wrote at the probe, for +X, −X, +Y, −Y, +Z, −Z.
 fn ambient_cube(gpu: &engine::gpu::Gpu, r: &GiRender) -> [[f32; 3]; 6] {
-    let buffer = r.renderer.graph().physical_buffer(VIEW_MODEL_IRRADIANCE).expect("declared by the engine");
+    let buffer = r.renderer.graph().buffer_by_label("view_model.irradiance").expect("declared by the engine");
     let bytes = read_buffer(gpu, buffer);
     let v: &[[f32; 4]] = bytemuck::cast_slice(&bytes[..96]);
     std::array::from_fn(|i| [v[i][0], v[i][1], v[i][2]])

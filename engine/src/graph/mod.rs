@@ -1,162 +1,68 @@
-//! A small render graph in the spirit of kajiya-rg and rend3: passes declare the named textures
-//! and buffers they read, create and write; the graph orders them from those declarations,
-//! culls passes whose results nobody uses, and backs transient resources with a pool keyed by
-//! descriptor, aliasing resources whose lifetimes do not overlap.
+//! A small render graph in the spirit of kajiya-rg, Bevy and rend3.
 //!
-//! Ordering rule (documented because passes rely on it): for each resource, its creator and
-//! then its writers run in registration order; every pure reader runs after all of them.
+//! - Resources are typed handles ([`Handle<Image>`], [`Handle<Buffer>`]) made once when passes
+//!   are built; their labels name them in errors, debug views and menus.
+//! - Each pass belongs to a [`Stage`]; every frame it declares what it reads, creates and
+//!   writes, and gets back tokens ([`Read`], [`Write`]) that are its only way to the resources
+//!   in `run`.
+//! - The graph orders passes by stage, then by their declarations and explicit
+//!   [`PassOrder::after`]/[`PassOrder::before`]; it culls passes whose results reach no import,
+//!   and it refuses, naming the passes, a graph whose order is unclear: two writers of one
+//!   resource that nothing orders, a uniform written by two passes, a cycle.
+//! - Transient resources are pooled by descriptor and share memory when their lifetimes do not
+//!   overlap. Persistent resources and [`History`] pairs live across frames, owned by the graph,
+//!   until a resize or [`RenderGraph::reset_history`].
 
 mod compile;
+mod context;
+mod handle;
+mod kept;
+mod pass;
 mod pool;
+mod registry;
 mod resource;
 
 pub use compile::{CompiledGraph, GraphError};
+pub use context::{ImportedTexture, PassCalls, PassContext};
+pub use handle::{Access, Buffer, Handle, History, Image, Read, ResourceId, ResourceKind, Write};
+pub use pass::{PassDecl, PassOrder, RenderPass, Stage};
 pub use pool::{PoolStats, ResourcePool};
 pub use resource::{BufferDesc, ResourceDesc, SizeRule, TextureDesc};
+
+use compile::PassInfo;
+use context::{Backing, ResourceTable};
+use kept::KeptResources;
+use pass::{Declared, Node, Use};
+use registry::{Lifetime, Registry};
 
 use crate::frame::Frame;
 use crate::gpu::Gpu;
 use crate::gpu_timer::GpuTimer;
+use crate::view_state::ViewState;
 
-/// What declarations may depend on besides a pass's own settings.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DeclareContext {
-    /// The headlamp sits at the camera (its view is the camera's G-buffer).
-    pub lamp_attached: bool,
+struct Registered {
+    stage: Stage,
+    node: Box<dyn Node>,
 }
 
-impl Default for DeclareContext {
-    fn default() -> Self {
-        Self { lamp_attached: true }
-    }
-}
-
-/// What one pass reads, creates and writes; filled in by [`RenderPass::declare`].
-#[derive(Default, Debug, Clone, PartialEq)]
-pub struct PassDecl {
-    context: DeclareContext,
-    pub(crate) reads: Vec<String>,
-    pub(crate) creates: Vec<(String, ResourceDesc)>,
-    pub(crate) writes: Vec<String>,
-}
-
-impl PassDecl {
-    pub fn new(context: DeclareContext) -> Self {
-        Self { context, ..Self::default() }
-    }
-    /// The frame state declarations may depend on.
-    pub fn context(&self) -> DeclareContext {
-        self.context
-    }
-    /// Samples or loads `name`; runs after everything that creates or writes it.
-    pub fn read(&mut self, name: &str) -> &mut Self {
-        self.reads.push(name.to_owned());
-        self
-    }
-    /// Creates the transient texture `name`; its contents are undefined until this pass writes them.
-    pub fn create_texture(&mut self, name: &str, desc: TextureDesc) -> &mut Self {
-        self.creates.push((name.to_owned(), ResourceDesc::Texture(desc)));
-        self
-    }
-    /// Creates the transient buffer `name`.
-    pub fn create_buffer(&mut self, name: &str, desc: BufferDesc) -> &mut Self {
-        self.creates.push((name.to_owned(), ResourceDesc::Buffer(desc)));
-        self
-    }
-    /// Writes (or blends into) a resource created by an earlier pass or imported.
-    pub fn write(&mut self, name: &str) -> &mut Self {
-        self.writes.push(name.to_owned());
-        self
-    }
-}
-
-/// One node of the graph. `declare` is called every frame and must be cheap; it may change
-/// (with settings, the displayed view, [`PassDecl::context`]) and the graph re-schedules
-/// when it does.
-pub trait RenderPass {
-    fn name(&self) -> &str;
-    fn declare(&self, decl: &mut PassDecl);
-    fn run(&mut self, ctx: &mut PassContext<'_>);
-}
-
-/// What a pass sees while recording.
-pub struct PassContext<'a> {
-    pub gpu: &'a Gpu,
-    pub frame: &'a Frame<'a>,
-    pub encoder: &'a mut wgpu::CommandEncoder,
-    resources: &'a ResourceTable<'a>,
-}
-
-// Resources borrow from the graph for the whole execution ('a), not from the context, so a
-// pass can hold a view while it records into the encoder.
-impl<'a> PassContext<'a> {
-    pub fn texture(&self, name: &str) -> &'a wgpu::Texture {
-        self.resources.texture(name)
-    }
-    /// The default view (all mips) of a texture.
-    pub fn view(&self, name: &str) -> &'a wgpu::TextureView {
-        self.resources.view(name)
-    }
-    pub fn buffer(&self, name: &str) -> &'a wgpu::Buffer {
-        self.resources.buffer(name)
-    }
-}
-
-/// A texture owned outside the graph (the swapchain image, a readback target).
-pub struct ImportedTexture<'a> {
-    pub name: &'a str,
-    pub texture: &'a wgpu::Texture,
-    pub view: &'a wgpu::TextureView,
-}
-
-/// Maps names to the physical resources backing them for one execution.
-pub(crate) struct ResourceTable<'a> {
-    compiled: &'a CompiledGraph,
-    pool: &'a ResourcePool,
-    imports: &'a [ImportedTexture<'a>],
-}
-
-impl<'a> ResourceTable<'a> {
-    fn imported(&self, name: &str) -> Option<&'a ImportedTexture<'a>> {
-        self.imports.iter().find(|i| i.name == name)
-    }
-    fn texture(&self, name: &str) -> &'a wgpu::Texture {
-        if let Some(i) = self.imported(name) {
-            return i.texture;
-        }
-        self.pool.texture(self.compiled.slot(name).unwrap_or_else(|| undeclared(name)))
-    }
-    fn view(&self, name: &str) -> &'a wgpu::TextureView {
-        if let Some(i) = self.imported(name) {
-            return i.view;
-        }
-        self.pool.view(self.compiled.slot(name).unwrap_or_else(|| undeclared(name)))
-    }
-    fn buffer(&self, name: &str) -> &'a wgpu::Buffer {
-        self.pool.buffer(self.compiled.slot(name).unwrap_or_else(|| undeclared(name)))
-    }
-}
-
-fn undeclared(name: &str) -> ! {
-    // A pass asked for a resource it never declared: a programming error in that pass.
-    panic!("render graph: resource '{name}' was not declared by any scheduled pass")
-}
-
-/// The passes, the names imported from outside, the compiled schedule and the pool.
+/// The resources, the passes, the compiled schedule, and the memory behind it all.
 #[derive(Default)]
 pub struct RenderGraph {
-    passes: Vec<Box<dyn RenderPass>>,
-    imports: Vec<String>,
+    registry: Registry,
+    passes: Vec<Registered>,
+    /// Explicit orders, (before, after) by pass name.
+    explicit: Vec<(String, String)>,
     compiled: Option<CompiledGraph>,
     /// The declarations `compiled` was built from.
-    declared: Vec<(String, PassDecl)>,
-    /// The context of the frame being scheduled.
-    context: DeclareContext,
+    declared: Vec<Vec<Use>>,
     pool: ResourcePool,
+    kept: KeptResources,
     allocated_for: Option<(u32, u32)>,
     /// Whether to time passes; the timer is made on the first timed frame.
     timing: bool,
     timer: Option<GpuTimer>,
+    /// Each scheduled pass of the last frame and what it recorded.
+    calls: Vec<(String, PassCalls)>,
 }
 
 impl RenderGraph {
@@ -164,56 +70,131 @@ impl RenderGraph {
         Self::default()
     }
 
-    pub fn add_pass(&mut self, pass: Box<dyn RenderPass>) {
-        self.passes.push(pass);
-        self.compiled = None;
+    /// A texture that lives within a frame (from the pass creating it to its last reader).
+    pub fn image(&mut self, label: &str) -> Handle<Image> {
+        Handle::new(self.add(label, Lifetime::Transient))
     }
 
-    /// Declares a resource supplied at execution time. Passes writing an import are the
-    /// graph's roots: everything they depend on is kept, the rest is culled.
-    pub fn import(&mut self, name: &str) {
-        self.imports.push(name.to_owned());
-        self.compiled = None;
+    /// A buffer that lives within a frame.
+    pub fn buffer(&mut self, label: &str) -> Handle<Buffer> {
+        Handle::new(self.add(label, Lifetime::Transient))
     }
 
-    /// Forces re-declaration and re-scheduling (after a pass changed what it declares).
-    pub fn invalidate(&mut self) {
+    /// A texture kept across frames (re-created, zero, on a resize and on a history reset).
+    pub fn persistent_image(&mut self, label: &str) -> Handle<Image> {
+        Handle::new(self.add(label, Lifetime::Persistent))
+    }
+
+    /// A buffer kept across frames (re-created, zero, when its size changes and on a reset).
+    pub fn persistent_buffer(&mut self, label: &str) -> Handle<Buffer> {
+        Handle::new(self.add(label, Lifetime::Persistent))
+    }
+
+    /// A texture with last frame's contents beside this frame's (labels `label` and
+    /// `label.previous`).
+    pub fn history_image(&mut self, label: &str) -> History<Image> {
+        let (current, previous) = self.registry.add_pair(label);
         self.compiled = None;
+        History { current: Handle::new(current), previous: Handle::new(previous) }
+    }
+
+    /// A buffer with last frame's contents beside this frame's.
+    pub fn history_buffer(&mut self, label: &str) -> History<Buffer> {
+        let (current, previous) = self.registry.add_pair(label);
+        self.compiled = None;
+        History { current: Handle::new(current), previous: Handle::new(previous) }
+    }
+
+    /// A texture supplied at execution (see [`ImportedTexture`]). Passes writing an import are
+    /// the graph's roots: everything they depend on is kept, the rest is culled.
+    pub fn import_image(&mut self, label: &str) -> Handle<Image> {
+        Handle::new(self.add(label, Lifetime::Imported))
+    }
+
+    fn add(&mut self, label: &str, lifetime: Lifetime) -> ResourceId {
+        self.compiled = None;
+        self.registry.add(label, lifetime)
+    }
+
+    /// The label a resource was made with.
+    pub fn label(&self, id: ResourceId) -> &str {
+        self.registry.label(id)
+    }
+
+    /// The texture labelled `label`, for tools and tests that read results back by name
+    /// (passes hold handles).
+    pub fn find_image(&self, label: &str) -> Option<Handle<Image>> {
+        self.registry.find(label).map(Handle::new)
+    }
+
+    /// The buffer labelled `label` (see [`RenderGraph::find_image`]).
+    pub fn find_buffer(&self, label: &str) -> Option<Handle<Buffer>> {
+        self.registry.find(label).map(Handle::new)
+    }
+
+    /// Adds a pass to `stage`; the returned [`PassOrder`] can order it against passes of the
+    /// same stage by name.
+    pub fn add_pass<P: RenderPass>(&mut self, stage: Stage, pass: P) -> PassOrder<'_> {
+        let name = pass.name().to_owned();
+        self.passes.push(Registered { stage, node: Box::new(Declared { pass, io: None }) });
+        self.compiled = None;
+        PassOrder { name, edges: &mut self.explicit }
+    }
+
+    /// Forgets every history and persistent resource: the next frame starts from zeros, as
+    /// after a cut (a level loaded, a restart, a teleport, the lamp set down or picked up).
+    pub fn reset_history(&mut self) {
+        self.kept.reset();
     }
 
     pub fn pass_names(&self) -> Vec<String> {
-        self.passes.iter().map(|p| p.name().to_owned()).collect()
+        self.passes.iter().map(|p| p.node.name().to_owned()).collect()
     }
 
-    /// Orders, culls and checks the graph; errors name the pass and resource at fault.
-    /// Re-schedules only when some pass's declaration changed since the last call.
-    pub fn compile(&mut self) -> Result<&CompiledGraph, GraphError> {
-        let decls: Vec<(String, PassDecl)> = self
+    /// Declares every pass for a frame of `size` rendered from `view`, then orders, culls and
+    /// checks the graph; errors name the passes and resources at fault. Re-schedules only when
+    /// some declaration changed since the last call.
+    pub fn compile(&mut self, size: (u32, u32), view: &ViewState) -> Result<&CompiledGraph, GraphError> {
+        let decls: Vec<Vec<Use>> = self
             .passes
-            .iter()
+            .iter_mut()
             .map(|p| {
-                let mut d = PassDecl::new(self.context);
-                p.declare(&mut d);
-                (p.name().to_owned(), d)
+                let mut d = PassDecl::new(size, view);
+                p.node.declare(&mut d);
+                d.uses
             })
             .collect();
         if self.compiled.is_none() || decls != self.declared {
             self.compiled = None;
-            self.compiled = Some(CompiledGraph::compile(&decls, &self.imports)?);
+            let infos: Vec<PassInfo<'_>> = self
+                .passes
+                .iter()
+                .zip(&decls)
+                .map(|(p, uses)| PassInfo { name: p.node.name(), stage: p.stage, uses })
+                .collect();
+            let compiled = CompiledGraph::compile(&infos, &self.explicit, &self.registry)?;
+            self.compiled = Some(compiled);
             self.declared = decls;
             self.allocated_for = None;
         }
         Ok(self.compiled.as_ref().expect("just compiled"))
     }
 
-    /// Backs every transient resource for a view of `size`, reusing pooled ones.
-    pub fn allocate(&mut self, gpu: &Gpu, size: (u32, u32)) -> Result<(), GraphError> {
-        self.compile()?;
+    /// Backs every resource the scheduled passes use for a view of `size`: transients from the
+    /// pool, kept resources made where missing or of another size.
+    pub fn allocate(&mut self, gpu: &Gpu, size: (u32, u32), view: &ViewState) -> Result<(), GraphError> {
+        self.compile(size, view)?;
+        let compiled = self.compiled.as_mut().expect("compiled above");
         if self.allocated_for != Some(size) {
-            let compiled = self.compiled.as_mut().expect("compiled above");
-            compiled.assign_slots(&mut self.pool, &gpu.device, size);
+            compiled.assign_slots(&mut self.pool, &gpu.device, size, &self.registry);
             self.allocated_for = Some(size);
         }
+        let registry = &self.registry;
+        let wanted = compiled.kept.iter().map(|(&id, &desc)| {
+            let pair = matches!(registry.lifetime(id), Lifetime::History { .. });
+            (id, desc, pair, registry.label(id).to_owned())
+        });
+        self.kept.prepare(&gpu.device, wanted, size);
         Ok(())
     }
 
@@ -237,8 +218,15 @@ impl RenderGraph {
         self.timer.as_ref()?.read(gpu)
     }
 
+    /// Each pass of the last frame, in execution order, and the draws and dispatches it
+    /// recorded.
+    pub fn last_calls(&self) -> &[(String, PassCalls)] {
+        &self.calls
+    }
+
     pub fn pool_stats(&self) -> PoolStats {
-        self.pool.stats()
+        let pool = self.pool.stats();
+        PoolStats { live: pool.live + self.kept.live(), allocations: pool.allocations + self.kept.allocations() }
     }
 
     /// The schedule of the last compile (see [`CompiledGraph::order_names`]).
@@ -246,17 +234,39 @@ impl RenderGraph {
         self.compiled.as_ref()
     }
 
-    /// The id of the physical resource backing `name` (for tests and debugging).
-    pub fn physical_slot(&self, name: &str) -> Option<usize> {
-        self.compiled.as_ref()?.slot(name)
+    /// The id of the pooled resource backing a transient (for tests and debugging).
+    pub fn physical_slot<K>(&self, resource: Handle<K>) -> Option<usize> {
+        self.compiled.as_ref()?.slot(resource.id)
     }
 
-    pub fn physical_texture(&self, name: &str) -> Option<&wgpu::Texture> {
-        Some(self.pool.texture(self.physical_slot(name)?))
+    fn backing(&self, id: ResourceId) -> Option<&pool::Physical> {
+        let compiled = self.compiled.as_ref()?;
+        let table =
+            ResourceTable { registry: &self.registry, compiled, pool: &self.pool, kept: &self.kept, imports: &[] };
+        match table.backing(id)? {
+            Backing::Graph(p) => Some(p),
+            Backing::Import(_) => None,
+        }
     }
 
-    pub fn physical_buffer(&self, name: &str) -> Option<&wgpu::Buffer> {
-        Some(self.pool.buffer(self.physical_slot(name)?))
+    /// The texture behind a handle after the last frame (for tests and readback).
+    pub fn physical_texture(&self, resource: Handle<Image>) -> Option<&wgpu::Texture> {
+        Some(self.backing(resource.id)?.texture())
+    }
+
+    /// The buffer behind a handle after the last frame (for tests and readback).
+    pub fn physical_buffer(&self, resource: Handle<Buffer>) -> Option<&wgpu::Buffer> {
+        Some(self.backing(resource.id)?.buffer())
+    }
+
+    /// The texture labelled `label` after the last frame (for tools and tests).
+    pub fn texture_by_label(&self, label: &str) -> Option<&wgpu::Texture> {
+        self.physical_texture(self.find_image(label)?)
+    }
+
+    /// The buffer labelled `label` after the last frame (for tools and tests).
+    pub fn buffer_by_label(&self, label: &str) -> Option<&wgpu::Buffer> {
+        self.physical_buffer(self.find_buffer(label)?)
     }
 
     /// Records every scheduled pass into `encoder`.
@@ -267,31 +277,37 @@ impl RenderGraph {
         encoder: &mut wgpu::CommandEncoder,
         imports: &[ImportedTexture<'_>],
     ) -> Result<(), GraphError> {
-        self.context = DeclareContext { lamp_attached: frame.view.headlamp.attached };
-        self.allocate(gpu, frame.size)?;
+        self.allocate(gpu, frame.size, frame.view)?;
         let compiled = self.compiled.as_ref().expect("allocated above");
-        let table = ResourceTable { compiled, pool: &self.pool, imports };
+        let table = ResourceTable { registry: &self.registry, compiled, pool: &self.pool, kept: &self.kept, imports };
         let order = compiled.order();
         if self.timing && self.timer.as_ref().is_none_or(|t| (t.capacity() as usize) < order.len()) {
             self.timer = GpuTimer::new(gpu, order.len() as u32);
         }
         // Disabled timing costs one branch per pass.
         let timer = if self.timing { self.timer.as_mut() } else { None };
+        self.calls.clear();
         for (i, &index) in order.iter().enumerate() {
-            let pass = &mut self.passes[index];
+            let node = &mut self.passes[index].node;
             if let Some(t) = &timer {
                 t.start(encoder, i);
             }
-            encoder.push_debug_group(pass.name());
-            let mut ctx = PassContext { gpu, frame, encoder, resources: &table };
-            pass.run(&mut ctx);
+            encoder.push_debug_group(node.name());
+            let mut ctx = PassContext { gpu, frame, encoder, resources: &table, calls: PassCalls::default() };
+            node.run(&mut ctx);
+            let calls = ctx.calls;
             encoder.pop_debug_group();
             if let Some(t) = &timer {
                 t.end(encoder, i);
             }
+            self.calls.push((node.name().to_owned(), calls));
         }
         if let Some(t) = timer {
-            t.finish(encoder, order.iter().map(|&i| self.passes[i].name().to_owned()).collect());
+            t.finish(encoder, order.iter().map(|&i| self.passes[i].node.name().to_owned()).collect());
+        }
+        // What was written as current is the previous of the next frame.
+        for &id in &compiled.swapped {
+            self.kept.advance(id);
         }
         Ok(())
     }

@@ -2,7 +2,7 @@
 
 use super::resource::{ResolvedDesc, ResolvedTexture};
 
-enum Physical {
+pub(crate) enum Physical {
     Texture { texture: wgpu::Texture, view: wgpu::TextureView },
     Buffer(wgpu::Buffer),
 }
@@ -83,33 +83,37 @@ impl ResourcePool {
         }
     }
 
-    fn slot(&self, index: usize) -> &Slot {
-        self.slots[index].as_ref().expect("render graph slot in use")
+    pub(crate) fn physical(&self, index: usize) -> &Physical {
+        &self.slots[index].as_ref().expect("render graph slot in use").physical
     }
+}
 
-    pub(crate) fn texture(&self, index: usize) -> &wgpu::Texture {
-        match &self.slot(index).physical {
+// Handles are typed, so a texture's handle always finds a texture: the panics below would
+// be bugs of the graph itself.
+impl Physical {
+    pub(crate) fn texture(&self) -> &wgpu::Texture {
+        match self {
             Physical::Texture { texture, .. } => texture,
-            Physical::Buffer(_) => panic!("render graph: resource is a buffer, not a texture"),
+            Physical::Buffer(_) => unreachable!("a texture handle names a buffer"),
         }
     }
 
-    pub(crate) fn view(&self, index: usize) -> &wgpu::TextureView {
-        match &self.slot(index).physical {
+    pub(crate) fn view(&self) -> &wgpu::TextureView {
+        match self {
             Physical::Texture { view, .. } => view,
-            Physical::Buffer(_) => panic!("render graph: resource is a buffer, not a texture"),
+            Physical::Buffer(_) => unreachable!("a texture handle names a buffer"),
         }
     }
 
-    pub(crate) fn buffer(&self, index: usize) -> &wgpu::Buffer {
-        match &self.slot(index).physical {
+    pub(crate) fn buffer(&self) -> &wgpu::Buffer {
+        match self {
             Physical::Buffer(b) => b,
-            Physical::Texture { .. } => panic!("render graph: resource is a texture, not a buffer"),
+            Physical::Texture { .. } => unreachable!("a buffer handle names a texture"),
         }
     }
 }
 
-fn create(device: &wgpu::Device, label: &str, key: ResolvedDesc) -> Physical {
+pub(crate) fn create(device: &wgpu::Device, label: &str, key: ResolvedDesc) -> Physical {
     match key {
         ResolvedDesc::Texture(ResolvedTexture { format, width, height, usage, mip_levels }) => {
             let texture = device.create_texture(&wgpu::TextureDescriptor {

@@ -8,10 +8,6 @@ pub enum SizeRule {
     /// the view), keeping the aspect: for targets that must sample the scene finely enough
     /// whatever the output size.
     ViewScaledAtLeast(f32, u32),
-    /// The view halved (rounding up) as many times as it stays at least as tall as
-    /// `ViewScaledAtLeast(scale, min_height)`, at most `max_halvings` times: the coarsest mip
-    /// of the view that still samples as finely as that target, for inputs subsampled to it.
-    ViewHalvedToward(f32, u32, u32),
     Fixed(u32, u32),
 }
 
@@ -26,42 +22,8 @@ impl SizeRule {
                 let floor = (min_height as f32 / view.1.max(1) as f32).min(1.0);
                 SizeRule::ViewScaled(s.max(floor)).resolve(view)
             }
-            SizeRule::ViewHalvedToward(s, min_height, max_halvings) => {
-                let k = SizeRule::halvings_toward(view, s, min_height, max_halvings);
-                (view.0.max(1).div_ceil(1 << k), view.1.max(1).div_ceil(1 << k))
-            }
             SizeRule::Fixed(w, h) => (w.max(1), h.max(1)),
         }
-    }
-
-    /// How many times [`SizeRule::ViewHalvedToward`] halves a view of `view` pixels.
-    pub fn halvings_toward(view: (u32, u32), scale: f32, min_height: u32, max_halvings: u32) -> u32 {
-        let target = SizeRule::ViewScaledAtLeast(scale, min_height).resolve(view).1;
-        let mut k = 0;
-        while k < max_halvings && view.1.max(1).div_ceil(1 << (k + 1)) >= target {
-            k += 1;
-        }
-        k
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn halving_toward_a_target_stops_before_it_gets_shorter() {
-        let rule = |view| SizeRule::ViewHalvedToward(0.25, 90, 3).resolve(view);
-        // 360 rows → 180 → 90: two halvings reach the 90-row target exactly.
-        assert_eq!(rule((640, 360)), (160, 90));
-        // 720 rows: a quarter is 180 rows, so two halvings; a third would give 90 < 180.
-        assert_eq!(rule((1280, 720)), (320, 180));
-        // 240 rows: the target is 90; 120 ≥ 90 but 60 < 90.
-        assert_eq!(rule((320, 240)), (160, 120));
-        assert_eq!(rule((160, 120)), (160, 120));
-        assert_eq!(rule((1281, 721)), (321, 181));
-        // Never more than max_halvings.
-        assert_eq!(SizeRule::ViewHalvedToward(0.01, 1, 2).resolve((1024, 1024)), (256, 256));
     }
 }
 

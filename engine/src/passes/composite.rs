@@ -1,21 +1,27 @@
 //! Starts the frame's HDR radiance as direct + emissive; plugins then add into it.
 
 use super::fullscreen::{bind_textures, color_pass, fullscreen_pipeline, textures_layout};
-use super::names::*;
-use super::HDR_FORMAT;
+use super::{CoreResources, HDR_FORMAT};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
-use crate::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
+use crate::graph::{Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
 
 pub const SHADER: &str = include_str!("../../../shaders/composite.wgsl");
 
 pub struct CompositePass {
     pipeline: wgpu::RenderPipeline,
     inputs: wgpu::BindGroupLayout,
+    core: CoreResources,
+}
+
+pub struct CompositeIo {
+    direct: Read<Image>,
+    emissive: Read<Image>,
+    hdr: Write<Image>,
 }
 
 impl CompositePass {
-    pub fn new(gpu: &Gpu, layouts: &CoreLayouts) -> Self {
+    pub fn new(gpu: &Gpu, layouts: &CoreLayouts, core: &CoreResources) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "composite", SHADER, &[]);
         let inputs = textures_layout(device, "composite inputs", 2, false);
@@ -27,23 +33,29 @@ impl CompositePass {
             HDR_FORMAT,
             None,
         );
-        Self { pipeline, inputs }
+        Self { pipeline, inputs, core: *core }
     }
 }
 
 impl RenderPass for CompositePass {
+    type Io = CompositeIo;
+
     fn name(&self) -> &str {
         "composite"
     }
 
-    fn declare(&self, d: &mut PassDecl) {
-        d.read(DIRECT).read(GBUFFER_EMISSIVE).create_texture(HDR, TextureDesc::target(HDR_FORMAT));
+    fn declare(&self, d: &mut PassDecl<'_>) -> CompositeIo {
+        CompositeIo {
+            direct: d.read(self.core.direct),
+            emissive: d.read(self.core.emissive),
+            hdr: d.create(self.core.hdr, TextureDesc::target(HDR_FORMAT)),
+        }
     }
 
-    fn run(&mut self, ctx: &mut PassContext<'_>) {
-        let views = [ctx.view(DIRECT), ctx.view(GBUFFER_EMISSIVE)];
+    fn run(&mut self, io: &CompositeIo, ctx: &mut PassContext<'_>) {
+        let views = [ctx.view(&io.direct), ctx.view(&io.emissive)];
         let inputs = bind_textures(&ctx.gpu.device, &self.inputs, &views, None);
-        let target = ctx.view(HDR);
+        let target = ctx.view(&io.hdr);
         let mut pass = color_pass(ctx.encoder, "composite", target, false);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, ctx.frame.globals, &[]);

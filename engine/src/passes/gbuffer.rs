@@ -1,12 +1,11 @@
 //! Rasterises the scene from the camera into the G-buffer.
 
-use super::names::*;
-use super::HDR_FORMAT;
+use super::{CoreResources, HDR_FORMAT};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::gpu_instances::INSTANCE_LAYOUT;
 use crate::gpu_scene::{self, GpuScene, VERTEX_LAYOUT};
-use crate::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
+use crate::graph::{Handle, Image, PassContext, PassDecl, RenderPass, TextureDesc, Write};
 
 pub const SHADER: &str = include_str!("../../../shaders/gbuffer.wgsl");
 
@@ -17,18 +16,32 @@ pub const POSITION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Floa
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Half floats: F0 = 0.04 would be off by 2 % in 8 bits.
 pub const SPECULAR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// The colour targets in `@location` order: albedo, normal, position, emissive, specular.
+const FORMATS: [wgpu::TextureFormat; 5] = [ALBEDO_FORMAT, HDR_FORMAT, POSITION_FORMAT, HDR_FORMAT, SPECULAR_FORMAT];
 
 pub struct GBufferPass {
     pipelines: ScenePipelines,
+    /// Albedo, normal, position, emissive, specular; then depth.
+    colors: [Handle<Image>; 5],
+    depth: Handle<Image>,
+}
+
+pub struct GBufferIo {
+    colors: [Write<Image>; 5],
+    depth: Write<Image>,
 }
 
 impl GBufferPass {
-    pub fn new(gpu: &Gpu, layouts: &CoreLayouts, scene: &GpuScene) -> Self {
+    pub fn new(gpu: &Gpu, layouts: &CoreLayouts, scene: &GpuScene, core: &CoreResources) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "gbuffer", SHADER, &[]);
-        let targets = [ALBEDO_FORMAT, HDR_FORMAT, POSITION_FORMAT, HDR_FORMAT, SPECULAR_FORMAT];
         let used = scene.variants_used();
-        Self { pipelines: ScenePipelines::new(device, "gbuffer", &module, layouts, &targets, used) }
+        let g = &core.gbuffer;
+        Self {
+            pipelines: ScenePipelines::new(device, "gbuffer", &module, layouts, &FORMATS, used),
+            colors: [g.albedo, g.normal, g.position, core.emissive, core.specular],
+            depth: g.depth,
+        }
     }
 }
 
@@ -134,12 +147,18 @@ pub(super) fn raster_pipeline(
 /// Records one pass drawing every mesh, then every instance, with [`ScenePipelines`]: the
 /// graph textures `colors` cleared to transparent (w = 0 marks "no geometry") and `depth`
 /// cleared to 0 (reversed Z). The one place the camera and lamp views are drawn from.
-pub fn draw_scene(ctx: &mut PassContext<'_>, label: &str, pipelines: &ScenePipelines, colors: &[&str], depth: &str) {
+pub fn draw_scene(
+    ctx: &mut PassContext<'_>,
+    label: &str,
+    pipelines: &ScenePipelines,
+    colors: &[Write<Image>],
+    depth: &Write<Image>,
+) {
     let colors: Vec<Option<wgpu::RenderPassColorAttachment>> = colors
         .iter()
-        .map(|name| {
+        .map(|target| {
             Some(wgpu::RenderPassColorAttachment {
-                view: ctx.view(name),
+                view: ctx.view(target),
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
@@ -170,21 +189,21 @@ pub fn draw_scene(ctx: &mut PassContext<'_>, label: &str, pipelines: &ScenePipel
 }
 
 impl RenderPass for GBufferPass {
+    type Io = GBufferIo;
+
     fn name(&self) -> &str {
         "gbuffer"
     }
 
-    fn declare(&self, d: &mut PassDecl) {
-        d.create_texture(GBUFFER_ALBEDO, TextureDesc::target(ALBEDO_FORMAT))
-            .create_texture(GBUFFER_NORMAL, TextureDesc::target(HDR_FORMAT))
-            .create_texture(GBUFFER_POSITION, TextureDesc::target(POSITION_FORMAT))
-            .create_texture(GBUFFER_EMISSIVE, TextureDesc::target(HDR_FORMAT))
-            .create_texture(GBUFFER_SPECULAR, TextureDesc::target(SPECULAR_FORMAT))
-            .create_texture(GBUFFER_DEPTH, TextureDesc::target(DEPTH_FORMAT));
+    fn declare(&self, d: &mut PassDecl<'_>) -> GBufferIo {
+        let mut formats = FORMATS.into_iter();
+        GBufferIo {
+            colors: self.colors.map(|h| d.create(h, TextureDesc::target(formats.next().expect("five formats")))),
+            depth: d.create(self.depth, TextureDesc::target(DEPTH_FORMAT)),
+        }
     }
 
-    fn run(&mut self, ctx: &mut PassContext<'_>) {
-        let colors = [GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION, GBUFFER_EMISSIVE, GBUFFER_SPECULAR];
-        draw_scene(ctx, "gbuffer", &self.pipelines, &colors, GBUFFER_DEPTH);
+    fn run(&mut self, io: &GBufferIo, ctx: &mut PassContext<'_>) {
+        draw_scene(ctx, "gbuffer", &self.pipelines, &io.colors, &io.depth);
     }
 }

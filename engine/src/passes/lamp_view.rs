@@ -12,17 +12,14 @@
 //! and consumers bind the same names every frame. Their contents are meaningful only while
 //! detached; attached consumers read `gbuffer.*` instead (see [`super::names`]).
 
-use super::names::*;
-use super::HDR_FORMAT;
+use super::{GBuffer, HDR_FORMAT};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::gpu_scene::GpuScene;
-use crate::graph::{PassContext, PassDecl, RenderPass, TextureDesc};
+use crate::graph::{Image, PassContext, PassDecl, RenderPass, TextureDesc, Write};
+use crate::headlamp::LAMP_MAP_SIZE;
 
 pub const SHADER: &str = include_str!("../../../shaders/lamp_view.wgsl");
-
-/// Width and height of every `lamp.*` texture, in texels.
-pub const LAMP_MAP_SIZE: u32 = 1024;
 
 /// Half floats like the camera G-buffer's albedo: hardware sRGB decoding differs between GPUs.
 pub const LAMP_ALBEDO_FORMAT: wgpu::TextureFormat = super::gbuffer::ALBEDO_FORMAT;
@@ -66,10 +63,16 @@ fn lamp_texture(format: wgpu::TextureFormat) -> TextureDesc {
 
 pub struct LampViewPass {
     pipelines: super::gbuffer::ScenePipelines,
+    lamp: GBuffer,
+}
+
+pub struct LampViewIo {
+    colors: [Write<Image>; 3],
+    depth: Write<Image>,
 }
 
 impl LampViewPass {
-    pub fn new(gpu: &Gpu, layouts: &CoreLayouts, scene: &GpuScene) -> Self {
+    pub fn new(gpu: &Gpu, layouts: &CoreLayouts, scene: &GpuScene, lamp: GBuffer) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "lamp view", SHADER, &[]);
         // Same rasterisation as the camera's G-buffer, instances included: the same alpha
@@ -78,28 +81,34 @@ impl LampViewPass {
         // side); reversed Z. No rasteriser depth bias: the shadow test applies its own, in metres.
         let targets = [LAMP_ALBEDO_FORMAT, LAMP_NORMAL_FORMAT, LAMP_POSITION_FORMAT];
         let used = scene.variants_used();
-        Self { pipelines: super::gbuffer::ScenePipelines::new(device, "lamp view", &module, layouts, &targets, used) }
+        let pipelines = super::gbuffer::ScenePipelines::new(device, "lamp view", &module, layouts, &targets, used);
+        Self { pipelines, lamp }
     }
 }
 
 impl RenderPass for LampViewPass {
+    type Io = LampViewIo;
+
     fn name(&self) -> &str {
         "lamp_view"
     }
 
-    fn declare(&self, d: &mut PassDecl) {
-        d.create_texture(LAMP_ALBEDO, lamp_texture(LAMP_ALBEDO_FORMAT))
-            .create_texture(LAMP_NORMAL, lamp_texture(LAMP_NORMAL_FORMAT))
-            .create_texture(LAMP_POSITION, lamp_texture(LAMP_POSITION_FORMAT))
-            .create_texture(LAMP_DEPTH, lamp_texture(LAMP_DEPTH_FORMAT));
+    fn declare(&self, d: &mut PassDecl<'_>) -> LampViewIo {
+        let l = &self.lamp;
+        LampViewIo {
+            colors: [
+                d.create(l.albedo, lamp_texture(LAMP_ALBEDO_FORMAT)),
+                d.create(l.normal, lamp_texture(LAMP_NORMAL_FORMAT)),
+                d.create(l.position, lamp_texture(LAMP_POSITION_FORMAT)),
+            ],
+            depth: d.create(l.depth, lamp_texture(LAMP_DEPTH_FORMAT)),
+        }
     }
 
-    fn run(&mut self, ctx: &mut PassContext<'_>) {
+    fn run(&mut self, io: &LampViewIo, ctx: &mut PassContext<'_>) {
         if ctx.frame.view.headlamp.attached {
-            // The camera G-buffer is the lamp view: nothing to do.
             return;
         }
-        let colors = [LAMP_ALBEDO, LAMP_NORMAL, LAMP_POSITION];
-        super::gbuffer::draw_scene(ctx, "lamp view", &self.pipelines, &colors, LAMP_DEPTH);
+        super::gbuffer::draw_scene(ctx, "lamp view", &self.pipelines, &io.colors, &io.depth);
     }
 }

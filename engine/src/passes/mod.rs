@@ -1,5 +1,5 @@
-//! The engine's core passes: G-buffer (+ lamp view when the headlamp is detached) → direct
-//! light → composite → [plugins] → view models → present.
+//! The engine's core passes, by stage: G-buffer (+ lamp view when the headlamp is detached);
+//! lighting (direct light); composite (hdr = direct + emissive); [plugins]; view models; present.
 
 mod composite;
 mod direct_light;
@@ -9,59 +9,86 @@ mod lamp_view;
 mod present;
 mod view_model;
 
+pub use crate::headlamp::LAMP_MAP_SIZE;
 pub use composite::CompositePass;
 pub use direct_light::DirectLightPass;
 pub use fullscreen::{bind_textures, color_pass, fullscreen_pipeline, procedural_pipeline, textures_layout};
 pub use gbuffer::GBufferPass;
-pub use lamp_view::{LampViewPass, LAMP_MAP_SIZE};
+pub use lamp_view::LampViewPass;
 pub(crate) use present::PresentUniform;
 pub use present::{OutputView, PresentPass, PresentSettings};
-pub use view_model::{ViewModelPass, ViewModelProbePass, VIEW_MODEL_IRRADIANCE_SIZE};
 
-/// Names of the graph resources the core passes create; plugins read and write them by name.
-pub mod names {
+use crate::graph::{Buffer, Handle, Image, RenderGraph};
+pub use view_model::{ViewModelIrradianceClearPass, ViewModelPass, VIEW_MODEL_IRRADIANCE_SIZE};
+
+/// The G-buffer of a view: the camera's, or the detached lamp's own (a reflective shadow map).
+#[derive(Clone, Copy, Debug)]
+pub struct GBuffer {
     /// Linear diffuse albedo ρ = (1 − metallic)·base colour, what diffuse light (the GI's
     /// included) reflects; the base colour itself for Lambertian surfaces (Rgba16Float).
-    pub const GBUFFER_ALBEDO: &str = "gbuffer.albedo";
-    /// World-space unit normal, facing the camera; w = 1 where there is geometry (Rgba16Float).
-    pub const GBUFFER_NORMAL: &str = "gbuffer.normal";
-    /// World-space position; w = view-space depth in metres, 0 for sky (Rgba32Float).
-    pub const GBUFFER_POSITION: &str = "gbuffer.position";
+    pub albedo: Handle<Image>,
+    /// World-space unit normal, facing the viewer; w = 1 where there is geometry (Rgba16Float).
+    pub normal: Handle<Image>,
+    /// World-space position; w = depth along the view axis in metres, 0 where empty
+    /// (Rgba32Float).
+    pub position: Handle<Image>,
+    /// Reversed depth buffer, cleared to 0 (Depth32Float); the lamp's is its shadow map.
+    pub depth: Handle<Image>,
+}
+
+/// The graph resources the core passes create: plugins read and write them through these
+/// handles (from `PluginContext::core`).
+#[derive(Clone, Copy, Debug)]
+pub struct CoreResources {
+    /// The camera's G-buffer (labels `gbuffer.*`).
+    pub gbuffer: GBuffer,
     /// Emitted radiance (Rgba16Float).
-    pub const GBUFFER_EMISSIVE: &str = "gbuffer.emissive";
+    pub emissive: Handle<Image>,
     /// The specular lobe of glTF's metallic-roughness BRDF: rgb = Fresnel reflectance at
     /// normal incidence F0 = mix(0.04, base colour, metallic), a = perceptual roughness; all 0
     /// for Lambertian surfaces (Rgba16Float). Only the direct light reads it: the GI is diffuse.
-    pub const GBUFFER_SPECULAR: &str = "gbuffer.specular";
-    /// Reversed depth buffer (Depth32Float).
-    pub const GBUFFER_DEPTH: &str = "gbuffer.depth";
-    /// The lamp's view (a reflective shadow map), [`super::LAMP_MAP_SIZE`]² texels, rendered
-    /// only while the headlamp is detached. While it is attached these hold nothing meaningful
-    /// and the `gbuffer.*` textures above are the lamp's view (same formats and meanings, the
-    /// camera being the lamp). Linear diffuse albedo ρ = (1 − metallic)·base colour
-    /// (Rgba16Float).
-    pub const LAMP_ALBEDO: &str = "lamp.albedo";
-    /// World-space unit normal facing the lamp; w = 1 where there is geometry (Rgba16Float).
-    pub const LAMP_NORMAL: &str = "lamp.normal";
-    /// World-space position; w = distance along the lamp's view axis in metres, 0 where
-    /// empty (Rgba32Float).
-    pub const LAMP_POSITION: &str = "lamp.position";
-    /// Reversed depth from the lamp, cleared to 0 (Depth32Float): the headlamp's shadow map.
-    pub const LAMP_DEPTH: &str = "lamp.depth";
+    pub specular: Handle<Image>,
+    /// The lamp's view, [`LAMP_MAP_SIZE`]² texels (labels `lamp.*`), rendered only while the
+    /// headlamp is detached. While it is attached these hold nothing meaningful and the
+    /// camera's G-buffer is the lamp's view (the camera being the lamp).
+    pub lamp: GBuffer,
     /// Direct radiance from the headlamp and punctual lights (Rgba16Float).
-    pub const DIRECT: &str = "direct";
+    pub direct: Handle<Image>,
     /// The frame's linear radiance; plugins blend additively into it (Rgba16Float).
-    pub const HDR: &str = "hdr";
+    pub hdr: Handle<Image>,
     /// Indirect irradiance E (W/m²) at `ViewState::view_model_probe`, an ambient cube: six
     /// `vec4<f32>` (w unused) for a surface facing +X, −X, +Y, −Y, +Z, −Z (world axes). Created
-    /// zero each frame by the engine; a GI plugin that can tell the irradiance at a point
-    /// `write`s it (plugins are registered after its creator), and the view-model pass reads it.
-    /// The one place indirect light reaches the view models, which are in no G-buffer.
-    pub const VIEW_MODEL_IRRADIANCE: &str = "view_model.irradiance";
+    /// zero each frame by the engine (stage Lighting); a GI plugin that can tell the irradiance
+    /// at a point `write`s it, and the view-model pass reads it. The one place indirect light
+    /// reaches the view models, which are in no G-buffer.
+    pub view_model_irradiance: Handle<Buffer>,
     /// The view models' own reversed depth buffer (Depth32Float), cleared before they are drawn.
-    pub const VIEW_MODEL_DEPTH: &str = "view_model.depth";
+    pub view_model_depth: Handle<Image>,
     /// The imported output image (swapchain or readback target).
-    pub const OUTPUT: &str = "output";
+    pub output: Handle<Image>,
+}
+
+impl CoreResources {
+    pub fn register(graph: &mut RenderGraph) -> Self {
+        let mut gbuffer = |prefix: &str| GBuffer {
+            albedo: graph.image(&format!("{prefix}.albedo")),
+            normal: graph.image(&format!("{prefix}.normal")),
+            position: graph.image(&format!("{prefix}.position")),
+            depth: graph.image(&format!("{prefix}.depth")),
+        };
+        let (camera, lamp) = (gbuffer("gbuffer"), gbuffer("lamp"));
+        Self {
+            gbuffer: camera,
+            lamp,
+            emissive: graph.image("gbuffer.emissive"),
+            specular: graph.image("gbuffer.specular"),
+            direct: graph.image("direct"),
+            hdr: graph.image("hdr"),
+            view_model_irradiance: graph.buffer("view_model.irradiance"),
+            view_model_depth: graph.image("view_model.depth"),
+            output: graph.import_image("output"),
+        }
+    }
 }
 
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;

@@ -5,10 +5,9 @@ use std::collections::HashMap;
 use std::rc::Rc;
 
 use super::fullscreen::{bind_textures, color_pass, procedural_pipeline, textures_layout};
-use super::names::*;
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
-use crate::graph::{PassContext, PassDecl, RenderPass};
+use crate::graph::{Handle, Image, PassContext, PassDecl, Read, RenderPass, Write};
 
 pub const SHADER: &str = include_str!("../../../shaders/present.wgsl");
 
@@ -40,7 +39,7 @@ impl OutputView {
 #[derive(Clone, Debug, PartialEq)]
 pub struct PresentSettings {
     /// Graph resource to show.
-    pub source: String,
+    pub source: Handle<Image>,
     pub kind: OutputView,
 }
 
@@ -65,10 +64,22 @@ pub struct PresentPass {
     /// By output format and whether the pipeline upsamples through the sampler.
     pipelines: HashMap<(wgpu::TextureFormat, bool), wgpu::RenderPipeline>,
     params: wgpu::Buffer,
+    output: Handle<Image>,
+}
+
+pub struct PresentIo {
+    source: Read<Image>,
+    output: Write<Image>,
+    kind: OutputView,
 }
 
 impl PresentPass {
-    pub fn new(gpu: &Gpu, layouts: &CoreLayouts, settings: Rc<RefCell<PresentSettings>>) -> Self {
+    pub fn new(
+        gpu: &Gpu,
+        layouts: &CoreLayouts,
+        settings: Rc<RefCell<PresentSettings>>,
+        output: Handle<Image>,
+    ) -> Self {
         let device = &gpu.device;
         Self {
             settings,
@@ -89,22 +100,25 @@ impl PresentPass {
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             }),
+            output,
         }
     }
 }
 
 impl RenderPass for PresentPass {
+    type Io = PresentIo;
+
     fn name(&self) -> &str {
         "present"
     }
 
-    fn declare(&self, d: &mut PassDecl) {
-        d.read(&self.settings.borrow().source).write(OUTPUT);
+    fn declare(&self, d: &mut PassDecl<'_>) -> PresentIo {
+        let settings = self.settings.borrow();
+        PresentIo { source: d.read(settings.source), output: d.write(self.output), kind: settings.kind }
     }
 
-    fn run(&mut self, ctx: &mut PassContext<'_>) {
-        let settings = self.settings.borrow().clone();
-        let output = ctx.texture(OUTPUT);
+    fn run(&mut self, io: &PresentIo, ctx: &mut PassContext<'_>) {
+        let output = ctx.texture(&io.output);
         let format = output.format();
         // A float output is read back as linear values (EXR); anything else is a picture.
         let linear = format == wgpu::TextureFormat::Rgba32Float;
@@ -113,11 +127,11 @@ impl RenderPass for PresentPass {
         // A view-sized source rendered below the output's size (render scale < 1) is upsampled
         // bilinearly where blending neighbours means something (radiance, colour); normals,
         // depths and the fixed-size lamp maps stay nearest-texel.
-        let source = ctx.texture(&settings.source);
+        let source = ctx.texture(&io.source);
         let (w, h) = (output.width(), output.height());
         let upsample = (source.width(), source.height()) == ctx.frame.size
             && ctx.frame.size != (w, h)
-            && matches!(settings.kind, OutputView::Radiance | OutputView::Color);
+            && matches!(io.kind, OutputView::Radiance | OutputView::Color);
         // Upsampling through the sampler's bilinear filter costs one sample a pixel instead of
         // four loads (on llvmpipe the present at 1280×720 went 19.4 → 12.3 ms): formats that cannot
         // be filtered (Rgba32Float) interpolate by hand.
@@ -128,7 +142,7 @@ impl RenderPass for PresentPass {
                 .flags
                 .contains(wgpu::TextureFormatFeatureFlags::FILTERABLE);
         let uniform = PresentUniform {
-            mode: [settings.kind.code(), linear as u32, encode_srgb as u32, upsample as u32],
+            mode: [io.kind.code(), linear as u32, encode_srgb as u32, upsample as u32],
             output: [w as f32, h as f32, 1.0 / w as f32, 1.0 / h as f32],
         };
         ctx.gpu.queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&uniform));
@@ -142,8 +156,8 @@ impl RenderPass for PresentPass {
             let entry = if filtered { "fs_upsample" } else { "fs_main" };
             procedural_pipeline(device, "present", module, ("vs_main", entry), &layouts, &targets, Default::default())
         });
-        let inputs = bind_textures(device, inputs_layout, &[ctx.view(&settings.source)], Some(&self.params));
-        let target = ctx.view(OUTPUT);
+        let inputs = bind_textures(device, inputs_layout, &[ctx.view(&io.source)], Some(&self.params));
+        let target = ctx.view(&io.output);
         let mut pass = color_pass(ctx.encoder, "present", target, false);
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, ctx.frame.globals, &[]);

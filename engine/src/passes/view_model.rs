@@ -5,18 +5,17 @@
 //! headlamp would otherwise be the brightest thing in its reflective shadow map).
 //!
 //! Their indirect light comes through one engine resource, `view_model.irradiance`: an ambient
-//! cube at `ViewState::view_model_probe`, which [`ViewModelProbePass`] creates zeroed and a GI
-//! plugin may `write` (its passes are registered after the probe's). The engine so knows no
+//! cube at `ViewState::view_model_probe`, which [`ViewModelIrradianceClearPass`] creates zeroed
+//! (stage Lighting) and a GI plugin may `write` (in a later stage). The engine so knows no
 //! plugin, and without one the view models are lit directly only.
 
 use super::gbuffer::{raster_pipeline, DEPTH_FORMAT};
-use super::names::*;
-use super::HDR_FORMAT;
+use super::{CoreResources, HDR_FORMAT};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::gpu_instances::INSTANCE_LAYOUT;
 use crate::gpu_scene::VERTEX_LAYOUT;
-use crate::graph::{BufferDesc, PassContext, PassDecl, RenderPass, TextureDesc};
+use crate::graph::{Buffer, BufferDesc, Handle, Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
 
 pub const SHADER: &str = include_str!("../../../shaders/view_model.wgsl");
 
@@ -24,20 +23,22 @@ pub const SHADER: &str = include_str!("../../../shaders/view_model.wgsl");
 pub const VIEW_MODEL_IRRADIANCE_SIZE: u64 = 6 * 16;
 
 /// Creates `view_model.irradiance` and clears it to zero.
-pub struct ViewModelProbePass;
+pub struct ViewModelIrradianceClearPass(pub Handle<Buffer>);
 
-impl RenderPass for ViewModelProbePass {
+impl RenderPass for ViewModelIrradianceClearPass {
+    type Io = Write<Buffer>;
+
     fn name(&self) -> &str {
-        "view_model_probe"
+        "view_model_irradiance_clear"
     }
 
-    fn declare(&self, d: &mut PassDecl) {
+    fn declare(&self, d: &mut PassDecl<'_>) -> Write<Buffer> {
         let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC;
-        d.create_buffer(VIEW_MODEL_IRRADIANCE, BufferDesc { size: VIEW_MODEL_IRRADIANCE_SIZE, usage });
+        d.create(self.0, BufferDesc { size: VIEW_MODEL_IRRADIANCE_SIZE, usage })
     }
 
-    fn run(&mut self, ctx: &mut PassContext<'_>) {
-        ctx.encoder.clear_buffer(ctx.buffer(VIEW_MODEL_IRRADIANCE), 0, None);
+    fn run(&mut self, irradiance: &Write<Buffer>, ctx: &mut PassContext<'_>) {
+        ctx.encoder.clear_buffer(ctx.buffer(irradiance), 0, None);
     }
 }
 
@@ -46,10 +47,18 @@ pub struct ViewModelPass {
     inputs: wgpu::BindGroupLayout,
     /// As the direct light pass's: bilinear GreaterEqual comparison of `lamp.depth`.
     shadow_sampler: wgpu::Sampler,
+    core: CoreResources,
+}
+
+pub struct ViewModelIo {
+    irradiance: Read<Buffer>,
+    lamp_depth: Read<Image>,
+    hdr: Write<Image>,
+    depth: Write<Image>,
 }
 
 impl ViewModelPass {
-    pub fn new(gpu: &Gpu, layouts: &CoreLayouts) -> Self {
+    pub fn new(gpu: &Gpu, layouts: &CoreLayouts, core: &CoreResources) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "view model", SHADER, &[]);
         let fragment = wgpu::ShaderStages::FRAGMENT;
@@ -82,24 +91,29 @@ impl ViewModelPass {
             &[HDR_FORMAT],
         );
         let shadow_sampler = super::lamp_view::lamp_shadow_sampler(device, "view model lamp shadow");
-        Self { pipeline, inputs, shadow_sampler }
+        Self { pipeline, inputs, shadow_sampler, core: *core }
     }
 }
 
 impl RenderPass for ViewModelPass {
+    type Io = ViewModelIo;
+
     fn name(&self) -> &str {
         "view_model"
     }
 
-    fn declare(&self, d: &mut PassDecl) {
+    fn declare(&self, d: &mut PassDecl<'_>) -> ViewModelIo {
         // The same declarations every frame, view models or none, so the graph never changes.
-        d.read(VIEW_MODEL_IRRADIANCE)
-            .read(LAMP_DEPTH)
-            .write(HDR)
-            .create_texture(VIEW_MODEL_DEPTH, TextureDesc::target(DEPTH_FORMAT));
+        let c = &self.core;
+        ViewModelIo {
+            irradiance: d.read(c.view_model_irradiance),
+            lamp_depth: d.read(c.lamp.depth),
+            hdr: d.write(c.hdr),
+            depth: d.create(c.view_model_depth, TextureDesc::target(DEPTH_FORMAT)),
+        }
     }
 
-    fn run(&mut self, ctx: &mut PassContext<'_>) {
+    fn run(&mut self, io: &ViewModelIo, ctx: &mut PassContext<'_>) {
         if ctx.frame.instances.view_models_empty() {
             return;
         }
@@ -107,21 +121,24 @@ impl RenderPass for ViewModelPass {
             label: Some("view model inputs"),
             layout: &self.inputs,
             entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: ctx.buffer(VIEW_MODEL_IRRADIANCE).as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(ctx.view(LAMP_DEPTH)) },
+                wgpu::BindGroupEntry { binding: 0, resource: ctx.buffer(&io.irradiance).as_entire_binding() },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(ctx.view(&io.lamp_depth)),
+                },
                 wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&self.shadow_sampler) },
             ],
         });
         let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("view model"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: ctx.view(HDR),
+                view: ctx.view(&io.hdr),
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: ctx.view(VIEW_MODEL_DEPTH),
+                view: ctx.view(&io.depth),
                 depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Discard }),
                 stencil_ops: None,
             }),

@@ -77,7 +77,7 @@ pub fn compare(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSett
         on_ms.push(b);
         ratios.push(b / a);
     }
-    let stats = on_handle.stats();
+    let stats = plugin_gi::GiStats::of(&on);
     let (off_ms, on_ms) = (Spread::of(&off_ms), Spread::of(&on_ms));
     Ok(CompareReport {
         level: args.level.display().to_string(),

@@ -282,7 +282,7 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
         }
     });
     renderer.set_timing(false);
-    let stats = handle.stats();
+    let stats = plugin_gi::GiStats::of(&renderer);
 
     // Reflection lights, on a few frames rendered again untimed (the readback stalls).
     let samples: Vec<usize> = if n <= LIGHT_SAMPLES {

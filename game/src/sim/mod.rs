@@ -142,6 +142,14 @@ pub enum Event {
     Died,
 }
 
+impl Event {
+    /// Whether the light changes at once, so that what the renderer kept from earlier frames
+    /// (its history) says nothing of the next: the lamp leaving the head or coming back.
+    pub fn cuts_the_light(&self) -> bool {
+        matches!(self, Event::LampPickedUp | Event::LampLetGo { .. })
+    }
+}
+
 /// A level's fixed gameplay data: its collision geometry and what it places.
 pub struct LevelWorld {
     pub collision: LevelCollision,

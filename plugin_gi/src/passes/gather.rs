@@ -1,24 +1,35 @@
 //! The first bounce's gather: the irradiance of every indirect-target pixel from the pyramid.
 
-use std::cell::RefCell;
-use std::rc::Rc;
-
-use engine::graph::{BufferDesc, PassContext, PassDecl, RenderPass, TextureDesc};
-use engine::passes::names::{GBUFFER_NORMAL, GBUFFER_POSITION};
+use engine::graph::{Buffer, BufferDesc, Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
+use engine::passes::CoreResources;
 use engine::wgpu;
 
-use super::flux::indirect_size;
-use crate::gather::{Gather, GatherTargets};
-use crate::gpu_types::{names, CENTRE_LIGHTS, GATHER_STATS_SIZE};
-use crate::pyramid::FluxPyramid;
-use crate::shared::{GiHandle, GpuShared};
+use super::params::{fixed, flux_size, indirect_size};
+use crate::gather::{bands, cuts_desc, Bands, Gather, GatherTargets};
+use crate::gpu_types::{CENTRE_LIGHTS, GATHER_STATS_SIZE};
+use crate::resources::GiResources;
+use crate::shared::GiHandle;
 
 pub struct GatherPass {
     handle: GiHandle,
-    pyramid: Rc<RefCell<FluxPyramid>>,
+    core: CoreResources,
+    gi: GiResources,
     gather: Gather,
     /// Stand in for the bounce-only bindings (one read, one written).
     sinks: [wgpu::TextureView; 2],
+}
+
+pub struct GatherIo {
+    params: Read<Buffer>,
+    levels: Read<Buffer>,
+    nodes: Read<Buffer>,
+    normal: Read<Image>,
+    position: Read<Image>,
+    cuts: Write<Buffer>,
+    irradiance: Write<Image>,
+    stats: Write<Buffer>,
+    lights: Write<Buffer>,
+    bands: Bands,
 }
 
 /// The irradiance format: f32 storage, summed by the gather itself (no blending).
@@ -40,63 +51,82 @@ pub(crate) fn sink(device: &wgpu::Device) -> wgpu::TextureView {
         .create_view(&Default::default())
 }
 
+/// An irradiance-sized storage texture (a gather's output, or a bounce's).
+pub(crate) fn irradiance_texture(size: (u32, u32)) -> TextureDesc {
+    let usage = wgpu::TextureUsages::STORAGE_BINDING
+        | wgpu::TextureUsages::TEXTURE_BINDING
+        | wgpu::TextureUsages::COPY_SRC
+        | wgpu::TextureUsages::COPY_DST;
+    TextureDesc { usage, size: fixed(size), ..TextureDesc::target(IRRADIANCE_FORMAT) }
+}
+
+/// The gather's counters and the centre tile's lights.
+pub(crate) fn stats_desc() -> BufferDesc {
+    let usage = wgpu::BufferUsages::STORAGE
+        | wgpu::BufferUsages::COPY_SRC
+        | wgpu::BufferUsages::COPY_DST
+        | wgpu::BufferUsages::INDIRECT;
+    BufferDesc { size: GATHER_STATS_SIZE, usage }
+}
+
+pub(crate) fn lights_desc() -> BufferDesc {
+    let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST;
+    BufferDesc { size: CENTRE_LIGHTS * std::mem::size_of::<crate::ReflectionLight>() as u64, usage }
+}
+
 impl GatherPass {
     pub(crate) fn new(
         device: &wgpu::Device,
         globals: &wgpu::BindGroupLayout,
         handle: GiHandle,
-        gpu: Rc<GpuShared>,
-        pyramid: Rc<RefCell<FluxPyramid>>,
+        core: CoreResources,
+        gi: GiResources,
     ) -> Self {
-        Self {
-            gather: Gather::new(device, globals, gpu.params.clone()),
-            handle,
-            pyramid,
-            sinks: [sink(device), sink(device)],
-        }
+        Self { gather: Gather::new(device, globals), handle, core, gi, sinks: [sink(device), sink(device)] }
     }
 }
 
 impl RenderPass for GatherPass {
+    type Io = GatherIo;
+
     fn name(&self) -> &str {
         "gi_gather"
     }
 
-    fn declare(&self, d: &mut PassDecl) {
-        let size = self.handle.settings().indirect_size();
-        let usage = wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC
-            | wgpu::TextureUsages::COPY_DST;
-        let target = TextureDesc { usage, size, ..TextureDesc::target(IRRADIANCE_FORMAT) };
-        let buffer = |size, usage| BufferDesc {
-            size,
-            usage: usage | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-        };
-        // FLUX orders this after the pyramid, which it reads through the shared node buffer.
-        d.read(names::FLUX)
-            .read(GBUFFER_NORMAL)
-            .read(GBUFFER_POSITION)
-            .create_texture(names::IRRADIANCE, target)
-            .create_buffer(names::STATS, buffer(GATHER_STATS_SIZE, wgpu::BufferUsages::INDIRECT))
-            .create_buffer(names::LIGHTS, buffer(CENTRE_LIGHTS * 48, wgpu::BufferUsages::empty()));
+    fn declare(&self, d: &mut PassDecl<'_>) -> GatherIo {
+        let settings = self.handle.settings();
+        let size = indirect_size(&settings, d.size());
+        let bands = bands(size, flux_size(&settings, d.size(), d.view().headlamp.attached));
+        let gi = &self.gi;
+        GatherIo {
+            params: d.read(gi.params),
+            levels: d.read(gi.levels),
+            nodes: d.read(gi.nodes),
+            normal: d.read(self.core.gbuffer.normal),
+            position: d.read(self.core.gbuffer.position),
+            cuts: d.create(gi.cuts, cuts_desc(&bands)),
+            irradiance: d.create(gi.irradiance, irradiance_texture(size)),
+            stats: d.create(gi.stats, stats_desc()),
+            lights: d.create(gi.lights, lights_desc()),
+            bands,
+        }
     }
 
-    fn run(&mut self, ctx: &mut PassContext<'_>) {
-        let settings = self.handle.settings();
-        let pyramid = self.pyramid.borrow();
+    fn run(&mut self, io: &GatherIo, ctx: &mut PassContext<'_>) {
         let targets = GatherTargets {
-            normal: ctx.view(GBUFFER_NORMAL),
-            position: ctx.view(GBUFFER_POSITION),
-            irradiance: ctx.view(names::IRRADIANCE),
+            params: ctx.buffer(&io.params),
+            levels: ctx.buffer(&io.levels),
+            nodes: ctx.buffer(&io.nodes),
+            cuts: ctx.buffer(&io.cuts),
+            normal: ctx.view(&io.normal),
+            position: ctx.view(&io.position),
+            irradiance: ctx.view(&io.irradiance),
             accumulate: &self.sinks[0],
             bounce: &self.sinks[1],
-            stats: ctx.buffer(names::STATS),
-            lights: ctx.buffer(names::LIGHTS),
+            stats: ctx.buffer(&io.stats),
+            lights: ctx.buffer(&io.lights),
         };
-        let size = indirect_size(&settings, ctx);
-        let dispatches =
-            self.gather.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, pyramid.buffers(), size, &targets);
-        self.handle.0.borrow_mut().stats.dispatches += dispatches;
+        let dispatches = self.gather.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, io.bands, &targets);
+        ctx.count_dispatches(dispatches);
     }
 }

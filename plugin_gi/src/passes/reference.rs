@@ -1,16 +1,15 @@
 //! The exact one bounce: every flux texel a sender, as the small patch it is, with no merging,
 //! no cutoff and no clamp (the `reference` view). Culled by the graph unless something shows or reads it.
 
-use std::rc::Rc;
-
-use engine::graph::{PassContext, PassDecl, RenderPass, SizeRule, TextureDesc};
-use engine::passes::names::{GBUFFER_ALBEDO, GBUFFER_NORMAL, GBUFFER_POSITION};
+use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, RenderPass, SizeRule, TextureDesc, Write};
+use engine::passes::CoreResources;
 use engine::wgpu;
 
-use super::flux::lamp_view;
+use super::params::{lamp_view, lamp_view_size};
 use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
-use crate::gpu_types::{names, SenderRange};
-use crate::shared::{GiHandle, GpuShared};
+use crate::gpu_types::SenderRange;
+use crate::resources::GiResources;
+use crate::shared::GiHandle;
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/reference.wgsl");
 
@@ -20,7 +19,8 @@ const SENDERS_PER_DISPATCH: u32 = 16384;
 
 pub struct ReferencePass {
     handle: GiHandle,
-    gpu: Rc<GpuShared>,
+    core: CoreResources,
+    gi: GiResources,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
     /// One uniform per sender range, and the running sums, kept while the sizes hold.
@@ -33,25 +33,38 @@ impl ReferencePass {
         device: &wgpu::Device,
         globals: &wgpu::BindGroupLayout,
         handle: GiHandle,
-        gpu: Rc<GpuShared>,
+        core: CoreResources,
+        gi: GiResources,
     ) -> Self {
         let mut slots = vec![S::Uniform];
         slots.extend([S::Texture; 6]);
         slots.push(S::StorageTexture(wgpu::TextureFormat::Rgba32Float));
         slots.extend([S::Uniform, S::Storage { read_only: false }]);
         let layout = layout(device, "gi reference", &slots);
-        let module = super::module(device, "gi reference", SHADER);
+        let module = crate::shader::module(device, "gi reference", SHADER);
         let pipeline = compute_pipeline(device, "gi reference", &module, "main", &[Some(globals), Some(&layout)]);
-        Self { handle, gpu, layout, pipeline, ranges: Vec::new(), sums: None }
+        Self { handle, core, gi, layout, pipeline, ranges: Vec::new(), sums: None }
     }
 }
 
+pub struct ReferenceIo {
+    params: Read<Buffer>,
+    /// The lamp view's albedo, position and normal (the senders), then the camera's (the
+    /// receivers): bindings 1–6.
+    textures: [Read<Image>; 6],
+    target: Write<Image>,
+    /// The lamp view's size: one sender a texel.
+    senders: (u32, u32),
+}
+
 impl RenderPass for ReferencePass {
+    type Io = ReferenceIo;
+
     fn name(&self) -> &str {
         "gi_reference"
     }
 
-    fn declare(&self, d: &mut PassDecl) {
+    fn declare(&self, d: &mut PassDecl<'_>) -> ReferenceIo {
         let usage =
             wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
         let desc = TextureDesc {
@@ -60,25 +73,26 @@ impl RenderPass for ReferencePass {
             usage,
             mip_levels: 1,
         };
-        let lamp = lamp_view(d.context().lamp_attached);
-        d.read(lamp.albedo).read(lamp.normal).read(lamp.position);
-        d.read(GBUFFER_ALBEDO).read(GBUFFER_NORMAL).read(GBUFFER_POSITION).create_texture(names::REFERENCE, desc);
+        let attached = d.view().headlamp.attached;
+        let (g, lamp) = (&self.core.gbuffer, lamp_view(&self.core.gbuffer, &self.core.lamp, attached));
+        ReferenceIo {
+            params: d.read(self.gi.params),
+            textures: [lamp.albedo, lamp.position, lamp.normal, g.albedo, g.normal, g.position].map(|h| d.read(h)),
+            target: d.create(self.gi.reference, desc),
+            senders: lamp_view_size(d.size(), attached),
+        }
     }
 
-    fn run(&mut self, ctx: &mut PassContext<'_>) {
+    fn run(&mut self, io: &ReferenceIo, ctx: &mut PassContext<'_>) {
         let device = &ctx.gpu.device;
-        // Shown alone, the reference runs without the flux pass, which otherwise writes these.
-        self.gpu.write_params(&ctx.gpu.queue, &super::flux::params(&self.handle.settings(), ctx, 0));
-        let lamp = lamp_view(ctx.frame.view.headlamp.attached);
         let (w, h) = ctx.frame.size;
         // (A view smaller than the stride is evaluated at its first pixel.)
         let stride = self.handle.reference_stride().min(w.min(h)).max(1);
         let receivers = (w / stride) * (h / stride);
-        let (fw, fh) = lamp.size.resolve(ctx.frame.size);
-        let senders = fw * fh;
+        let senders = io.senders.0 * io.senders.1;
         let chunks = senders.div_ceil(SENDERS_PER_DISPATCH).max(1);
         while self.ranges.len() < chunks as usize {
-            self.ranges.push(uniform_buffer(device, "gi reference range", 16));
+            self.ranges.push(uniform_buffer(device, "gi reference range", std::mem::size_of::<SenderRange>() as u64));
         }
         if self.sums.as_ref().is_none_or(|(size, _)| *size != (w, h)) {
             let buffer = device.create_buffer(&wgpu::BufferDescriptor {
@@ -90,6 +104,7 @@ impl RenderPass for ReferencePass {
             self.sums = Some(((w, h), buffer));
         }
         let sums = &self.sums.as_ref().expect("made above").1;
+        let [lamp_albedo, lamp_position, lamp_normal, albedo, normal, position] = &io.textures;
         for chunk in 0..chunks {
             let range = SenderRange {
                 first: chunk * SENDERS_PER_DISPATCH,
@@ -103,14 +118,14 @@ impl RenderPass for ReferencePass {
                 device,
                 &self.layout,
                 &[
-                    R::Buffer(&self.gpu.params),
-                    R::View(ctx.view(lamp.albedo)),
-                    R::View(ctx.view(lamp.position)),
-                    R::View(ctx.view(lamp.normal)),
-                    R::View(ctx.view(GBUFFER_ALBEDO)),
-                    R::View(ctx.view(GBUFFER_NORMAL)),
-                    R::View(ctx.view(GBUFFER_POSITION)),
-                    R::View(ctx.view(names::REFERENCE)),
+                    R::Buffer(ctx.buffer(&io.params)),
+                    R::View(ctx.view(lamp_albedo)),
+                    R::View(ctx.view(lamp_position)),
+                    R::View(ctx.view(lamp_normal)),
+                    R::View(ctx.view(albedo)),
+                    R::View(ctx.view(normal)),
+                    R::View(ctx.view(position)),
+                    R::View(ctx.view(&io.target)),
                     R::Buffer(uniform),
                     R::Buffer(sums),
                 ],

@@ -1,0 +1,10 @@
+//! The GI's WGSL: its shared include, and modules built with it.
+
+use engine::wgpu;
+
+/// The GI's shared WGSL include.
+pub const INCLUDES: &[(&str, &str)] = &[("gi_common.wgsl", include_str!("../../shaders/gi/gi_common.wgsl"))];
+
+pub fn module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
+    engine::shader::module(device, label, source, INCLUDES)
+}
