@@ -89,28 +89,34 @@ pub fn sampler_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::Bind
     }
 }
 
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-struct GlobalsUniform {
-    view_proj: Mat4,
-    inv_view_proj: Mat4,
-    view: Mat4,
-    lamp_view_proj: Mat4,
-    camera_pos: Vec4,
-    lamp_pos: Vec4,
-    lamp_intensity: Vec4,
-    viewport: Vec4,
-    params: Vec4,
-    camera_flash: Vec4,
+crate::gpu_struct! {
+    /// `Globals` in shaders/common.wgsl.
+    #[repr(C)]
+    #[derive(Clone, Copy, Pod, Zeroable)]
+    pub(crate) struct GlobalsUniform as Globals {
+        view_proj: Mat4,
+        inv_view_proj: Mat4,
+        view: Mat4,
+        lamp_view_proj: Mat4,
+        camera_pos: Vec4,
+        lamp_pos: Vec4,
+        lamp_intensity: Vec4,
+        viewport: Vec4,
+        params: Vec4,
+        camera_flash: Vec4,
+    }
 }
 
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-struct GpuLight {
-    position_range: [f32; 4],
-    direction_kind: [f32; 4],
-    color: [f32; 4],
-    cone: [f32; 4],
+crate::gpu_struct! {
+    /// `Light` in shaders/common.wgsl.
+    #[repr(C)]
+    #[derive(Clone, Copy, Pod, Zeroable)]
+    pub(crate) struct GpuLight as Light {
+        position_range: [f32; 4],
+        direction_kind: [f32; 4],
+        color: [f32; 4],
+        cone: [f32; 4],
+    }
 }
 
 impl GpuLight {

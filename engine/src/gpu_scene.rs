@@ -50,22 +50,27 @@ pub struct Draw {
     pub variant: usize,
 }
 
-/// `Material` in shaders/scene_surface.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-struct MaterialUniform {
-    base_color: [f32; 4],
-    emissive: [f32; 4],
-    /// The base colour texture's uv map: rows of a 2×3 matrix on (u, v, 1); row 0's w is the
-    /// uv set (0 or 1).
-    base_color_uv: [[f32; 4]; 2],
-    emissive_uv: [[f32; 4]; 2],
-    metallic_roughness_uv: [[f32; 4]; 2],
-    /// x: the alpha cutoff (read by `fs_masked` only).
-    alpha: [f32; 4],
-    /// x: metallic factor, y: roughness factor, z: 1 for the metallic-roughness BRDF, 0 for
-    /// Lambertian; w: 1 when there is a metallic-roughness texture.
-    reflection: [f32; 4],
+crate::gpu_struct! {
+    /// `Material` in shaders/scene_surface.wgsl.
+    #[repr(C)]
+    #[derive(Clone, Copy, Pod, Zeroable)]
+    pub(crate) struct MaterialUniform as Material {
+        base_color: [f32; 4],
+        emissive: [f32; 4],
+        /// The base colour texture's uv map: rows of a 2×3 matrix on (u, v, 1); row 0's w is
+        /// the uv set (0 or 1).
+        base_color_uv_0: [f32; 4],
+        base_color_uv_1: [f32; 4],
+        emissive_uv_0: [f32; 4],
+        emissive_uv_1: [f32; 4],
+        metallic_roughness_uv_0: [f32; 4],
+        metallic_roughness_uv_1: [f32; 4],
+        /// x: the alpha cutoff (read by `fs_masked` only).
+        alpha: [f32; 4],
+        /// x: metallic factor, y: roughness factor, z: 1 for the metallic-roughness BRDF, 0 for
+        /// Lambertian; w: 1 when there is a metallic-roughness texture.
+        reflection: [f32; 4],
+    }
 }
 
 /// The uniform's `reflection` row.
@@ -196,12 +201,18 @@ impl GpuScene {
                 let (base_view, base_sampler) = slot(m.base_color_texture.as_ref(), &srgb);
                 let (emissive_view, emissive_sampler) = slot(m.emissive_texture.as_ref(), &srgb);
                 let (mr_view, mr_sampler) = slot(m.metallic_roughness_texture(), &linear);
+                let [base_color_uv_0, base_color_uv_1] = uv_rows(m.base_color_texture.as_ref());
+                let [emissive_uv_0, emissive_uv_1] = uv_rows(m.emissive_texture.as_ref());
+                let [metallic_roughness_uv_0, metallic_roughness_uv_1] = uv_rows(m.metallic_roughness_texture());
                 let uniform = MaterialUniform {
                     base_color: m.base_color,
                     emissive: [m.emissive[0], m.emissive[1], m.emissive[2], 0.0],
-                    base_color_uv: uv_rows(m.base_color_texture.as_ref()),
-                    emissive_uv: uv_rows(m.emissive_texture.as_ref()),
-                    metallic_roughness_uv: uv_rows(m.metallic_roughness_texture()),
+                    base_color_uv_0,
+                    base_color_uv_1,
+                    emissive_uv_0,
+                    emissive_uv_1,
+                    metallic_roughness_uv_0,
+                    metallic_roughness_uv_1,
                     alpha: [m.alpha_cutoff().unwrap_or(0.0), 0.0, 0.0, 0.0],
                     reflection: reflection_row(&m.reflection),
                 };

@@ -11,6 +11,7 @@ pub mod gamepad;
 pub mod globals;
 pub mod gpu;
 pub mod gpu_instances;
+pub mod gpu_layout;
 pub mod gpu_scene;
 pub mod gpu_timer;
 pub mod graph;

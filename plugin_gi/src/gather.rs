@@ -10,7 +10,7 @@ use engine::wgpu;
 use engine::wgpu::util::DeviceExt;
 
 use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
-use crate::gpu_types::GATHER_STATS_SIZE;
+use crate::gpu_types::{Band, GATHER_STATS_SIZE, RETRY_HEADER};
 use crate::quadtree::Quadtree;
 use crate::shader::module;
 
@@ -61,9 +61,6 @@ struct BandBuffers {
     /// The workgroups of the retry dispatch, as its indirect arguments.
     retry_args: wgpu::Buffer,
 }
-
-/// Bytes of a band's retry list's header (its count, padded to a vec4).
-const RETRY_HEADER: u64 = 16;
 
 /// Receivers per tile side (`CUT_TILE` in gi_common.wgsl).
 pub const TILE: u32 = 8;
@@ -190,7 +187,11 @@ impl Gather {
                 .map(|i| BandBuffers {
                     first: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some("gi band"),
-                        contents: bytemuck::cast_slice(&[i * bands.rows, bands.rows, 0, 0]),
+                        contents: bytemuck::bytes_of(&Band {
+                            first_row: i * bands.rows,
+                            rows: bands.rows,
+                            pad: [0; 2],
+                        }),
                         usage: wgpu::BufferUsages::UNIFORM,
                     }),
                     retry: device.create_buffer(&wgpu::BufferDescriptor {
@@ -201,7 +202,7 @@ impl Gather {
                     }),
                     retry_args: device.create_buffer(&wgpu::BufferDescriptor {
                         label: Some("gi cuts retry arguments"),
-                        size: 12,
+                        size: std::mem::size_of::<wgpu::util::DispatchIndirectArgs>() as u64,
                         usage: wgpu::BufferUsages::STORAGE
                             | wgpu::BufferUsages::INDIRECT
                             | wgpu::BufferUsages::COPY_DST,

@@ -1,7 +1,8 @@
-//! CPU mirrors of the structs in shaders/gi/gi_common.wgsl, and the names of the graph
-//! resources the GI passes exchange.
+//! CPU twins of the structs in shaders/gi/*.wgsl (see `engine::gpu_layout`; the layout test
+//! compares them), and the names of the graph resources the GI passes exchange.
 
 use bytemuck::{Pod, Zeroable};
+use engine::gpu_layout::{GpuLayout, Layout};
 
 pub mod names {
     /// Reflected flux Φ per lamp-view texel, W (Rgba32Float).
@@ -23,50 +24,149 @@ pub mod names {
     pub const REFERENCE: &str = "gi.reference";
 }
 
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
-pub struct GiParams {
-    pub flux_size: [u32; 2],
-    pub indirect_size: [u32; 2],
-    pub lamp_tan: [f32; 2],
-    pub lamp_power: f32,
-    pub cos_merge: f32,
-    pub merge_distance: f32,
-    pub split_ratio: f32,
-    /// Lights are not split below this pyramid level.
-    pub min_level: u32,
-    /// 0: flux from the lamp; 1: flux from the previous bounce's irradiance.
-    pub source: u32,
-    /// 2: the gather's receivers share the cut in a 2×2 pattern; 1: each evaluates all of it.
-    pub interleave: u32,
-    pub pad: [u32; 3],
-    /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin, its
-    /// forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a texel's
-    /// corner rays follow from its index: the reference's footprints in its near field.
-    pub view_origin: [f32; 4],
-    pub view_forward: [f32; 4],
-    pub view_right: [f32; 4],
-    pub view_up: [f32; 4],
+engine::gpu_struct! {
+    /// The per-frame parameters every GI pass reads (gi_common.wgsl).
+    #[repr(C)]
+    #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+    pub struct GiParams {
+        pub flux_size: [u32; 2],
+        pub indirect_size: [u32; 2],
+        pub lamp_tan: [f32; 2],
+        pub lamp_power: f32,
+        pub cos_merge: f32,
+        pub merge_distance: f32,
+        pub split_ratio: f32,
+        /// Lights are not split below this pyramid level.
+        pub min_level: u32,
+        /// 0: flux from the lamp; 1: flux from the previous bounce's irradiance.
+        pub source: u32,
+        /// 2: the gather's receivers share the cut in a 2×2 pattern; 1: each evaluates all of it.
+        pub interleave: u32,
+        pub pad: [u32; 3],
+        /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin,
+        /// its forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a
+        /// texel's corner rays follow from its index: the reference's footprints in its near
+        /// field.
+        pub view_origin: [f32; 4],
+        pub view_forward: [f32; 4],
+        pub view_right: [f32; 4],
+        pub view_up: [f32; 4],
+    }
 }
 
-/// A reflection light as the gather used it: a Lambertian patch of area `area`,
-/// I_r(ω) = Φ/π · max(0, n·ω).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
-pub struct ReflectionLight {
-    pub position: [f32; 3],
-    pub area: f32,
-    pub normal: [f32; 3],
-    /// The pyramid level it came from (0 = one texel).
-    pub level: u32,
-    pub flux: [f32; 3],
-    /// 1 when it faces away from every receiver of its tile (left unevaluated), else 0.
-    pub faces_away: f32,
+engine::gpu_struct! {
+    /// A reflection light as the gather used it: a Lambertian patch of area `area`,
+    /// I_r(ω) = Φ/π · max(0, n·ω).
+    #[repr(C)]
+    #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+    pub struct ReflectionLight {
+        pub position: [f32; 3],
+        pub area: f32,
+        pub normal: [f32; 3],
+        /// The pyramid level it came from (0 = one texel).
+        pub level: u32,
+        pub flux: [f32; 3],
+        /// 1 when it faces away from every receiver of its tile (left unevaluated), else 0.
+        pub faces_away: f32,
+    }
 }
 
-/// Size in bytes of one pyramid node (see `Node` in gi_common.wgsl).
+engine::gpu_struct! {
+    /// The gather's counters, `Stats` in cuts.wgsl (which fills them; atomics there): first the
+    /// `lights` view's indirect draw arguments (the centre tile's cut), then the totals.
+    #[repr(C)]
+    #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+    pub struct GatherStats as Stats {
+        pub vertex_count: u32,
+        /// Reflection lights in the centre tile's cut.
+        pub instance_count: u32,
+        pub first_vertex: u32,
+        pub first_instance: u32,
+        /// Σ cut sizes over the tiles.
+        pub lights: u32,
+        /// Tiles with receivers.
+        pub tiles: u32,
+        /// Tiles whose cut filled up.
+        pub full: u32,
+        pub pad: u32,
+    }
+}
+
+engine::gpu_struct! {
+    /// The band of tile rows one cuts-and-sum dispatch pair covers (gi_common.wgsl).
+    #[repr(C)]
+    #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+    pub struct Band {
+        pub first_row: u32,
+        pub rows: u32,
+        pub pad: [u32; 2],
+    }
+}
+
+engine::gpu_struct! {
+    /// Per pyramid level: offset into the node buffer, width, height (gi_common.wgsl).
+    #[repr(C)]
+    #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+    pub struct Levels {
+        pub levels: [[u32; 4]; 8],
+    }
+}
+
+engine::gpu_struct! {
+    /// One dispatch of the reference's senders (reference.wgsl).
+    #[repr(C)]
+    #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+    pub struct SenderRange {
+        pub first: u32,
+        pub count: u32,
+        /// 1 on the final range.
+        pub last: u32,
+        pub stride: u32,
+    }
+}
+
+engine::gpu_struct! {
+    /// The view-model probe (view_model_probe.wgsl): xyz the point (m), and the pyramid level
+    /// summed in `level.x`.
+    #[repr(C)]
+    #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+    pub struct Probe {
+        pub position: [f32; 4],
+        pub level: [u32; 4],
+    }
+}
+
+/// The twins of the structs in the GI's shaders (shaders/gi/*.wgsl).
+pub fn twins() -> Vec<Layout> {
+    vec![
+        GiParams::layout(),
+        ReflectionLight::layout(),
+        GatherStats::layout(),
+        Band::layout(),
+        Levels::layout(),
+        SenderRange::layout(),
+        Probe::layout(),
+    ]
+}
+
+/// The structs in the GI's shaders that have no Rust twin, and why. The sizes the CPU needs of
+/// some of them are constants below, which the layout test checks.
+pub const GPU_ONLY: &[(&str, &str)] = &[
+    ("Node", "the pyramid's nodes are written and read by the GPU only (NODE_SIZE sizes them)"),
+    ("RetryList", "written and read by the GPU only (the CPU clears RETRY_HEADER)"),
+    ("DispatchArgs", "written by the GPU, read as wgpu's DispatchIndirectArgs"),
+    ("Sender", "workgroup memory"),
+    ("CutLight", "a function's value, never in a buffer"),
+    ("TileBounds", "a function's value, never in a buffer"),
+    ("Walk", "a function's value, never in a buffer"),
+    ("DotOut", "stage IO between vertex and fragment shaders"),
+];
+
+/// Size in bytes of one pyramid node (`Node` in gi_common.wgsl).
 pub const NODE_SIZE: u64 = 48;
-/// The gather's counters (see `Stats` in cuts.wgsl, which fills them).
-pub const GATHER_STATS_SIZE: u64 = 32;
+/// The gather's counters (`Stats` in cuts.wgsl).
+pub const GATHER_STATS_SIZE: u64 = std::mem::size_of::<GatherStats>() as u64;
+/// Bytes of a band's retry list's header, before its `tiles` (`RetryList` in cuts.wgsl).
+pub const RETRY_HEADER: u64 = 16;
 /// Capacity of the centre tile's light list.
 pub const CENTRE_LIGHTS: u64 = 8192;

@@ -9,7 +9,7 @@
 
 mod bindings;
 mod gather;
-mod gpu_types;
+pub mod gpu_types;
 pub mod metrics;
 mod passes;
 mod pyramid;

@@ -8,7 +8,7 @@ use engine::graph::BufferDesc;
 use engine::wgpu;
 
 use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
-use crate::gpu_types::NODE_SIZE;
+use crate::gpu_types::{Levels, NODE_SIZE};
 use crate::quadtree::Quadtree;
 use crate::shader::module;
 
@@ -25,7 +25,7 @@ pub fn nodes_desc(size: (u32, u32)) -> BufferDesc {
 /// The level table (offset, width, height per level), a uniform its builder writes.
 pub fn levels_desc() -> BufferDesc {
     BufferDesc {
-        size: std::mem::size_of::<[[u32; 4]; 8]>() as u64,
+        size: std::mem::size_of::<Levels>() as u64,
         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
     }
 }

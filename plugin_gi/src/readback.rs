@@ -5,13 +5,12 @@ use engine::gpu::Gpu;
 use engine::headless::{read_buffer, read_texture};
 use engine::renderer::Renderer;
 
-use crate::gpu_types::{names, ReflectionLight};
+use crate::gpu_types::{names, GatherStats, ReflectionLight};
 
 /// The reflection lights that lit the tile at the centre of the view in the last frame: its
 /// cut through the pyramid.
 pub fn lights(gpu: &Gpu, renderer: &Renderer) -> Option<Vec<ReflectionLight>> {
-    let stats = read_buffer(gpu, renderer.graph().buffer_by_label(names::STATS)?);
-    let count = u32::from_le_bytes(stats[4..8].try_into().ok()?) as usize;
+    let count = gather_stats(gpu, renderer)?.instance_count as usize;
     let bytes = read_buffer(gpu, renderer.graph().buffer_by_label(names::LIGHTS)?);
     let all: &[ReflectionLight] = bytemuck::cast_slice(&bytes);
     Some(all[..count.min(all.len())].to_vec())
@@ -36,9 +35,14 @@ impl CutStats {
 }
 
 pub fn cut_stats(gpu: &Gpu, renderer: &Renderer) -> Option<CutStats> {
-    let stats = read_buffer(gpu, renderer.graph().buffer_by_label(names::STATS)?);
-    let word = |i: usize| u32::from_le_bytes(stats[4 * i..4 * i + 4].try_into().expect("4 bytes"));
-    Some(CutStats { lights: word(4) as u64, tiles: word(5), full_tiles: word(6) })
+    let stats = gather_stats(gpu, renderer)?;
+    Some(CutStats { lights: stats.lights as u64, tiles: stats.tiles, full_tiles: stats.full })
+}
+
+/// The gather's counters of the last frame.
+fn gather_stats(gpu: &Gpu, renderer: &Renderer) -> Option<GatherStats> {
+    let bytes = read_buffer(gpu, renderer.graph().buffer_by_label(names::STATS)?);
+    Some(bytemuck::pod_read_unaligned(bytes.get(..std::mem::size_of::<GatherStats>())?))
 }
 
 /// Σ Φ over the last frame's flux G-buffer, per channel (W), summed in f64.

@@ -15,6 +15,7 @@ pub use direct_light::DirectLightPass;
 pub use fullscreen::{bind_textures, color_pass, fullscreen_pipeline, procedural_pipeline, textures_layout};
 pub use gbuffer::GBufferPass;
 pub use lamp_view::LampViewPass;
+pub(crate) use present::PresentUniform;
 pub use present::{OutputView, PresentPass, PresentSettings};
 
 use crate::graph::{Buffer, Handle, Image, RenderGraph};

@@ -43,13 +43,15 @@ pub struct PresentSettings {
     pub kind: OutputView,
 }
 
-/// `PresentParams` of shaders/present.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct PresentUniform {
-    mode: [u32; 4],
-    /// Output width, height, 1/width, 1/height.
-    output: [f32; 4],
+crate::gpu_struct! {
+    /// `PresentParams` of shaders/present.wgsl.
+    #[repr(C)]
+    #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+    pub(crate) struct PresentUniform as PresentParams {
+        mode: [u32; 4],
+        /// Output width, height, 1/width, 1/height.
+        output: [f32; 4],
+    }
 }
 
 pub struct PresentPass {

@@ -5,6 +5,7 @@ use engine::passes::CoreResources;
 use engine::wgpu;
 
 use super::params::{fixed, flux_size, lamp_view};
+use crate::gpu_types::Levels;
 use crate::pyramid::{levels_desc, nodes_desc, PyramidBindings, PyramidPipelines};
 use crate::quadtree::Quadtree;
 use crate::resources::GiResources;
@@ -69,8 +70,8 @@ impl RenderPass for FluxPass {
     }
 
     fn run(&mut self, io: &FluxIo, ctx: &mut PassContext<'_>) {
-        let table = Quadtree::new(io.size.0, io.size.1).table();
-        ctx.write_buffer(&io.levels, 0, bytemuck::cast_slice(&table));
+        let levels = Levels { levels: Quadtree::new(io.size.0, io.size.1).table() };
+        ctx.write_buffer(&io.levels, 0, bytemuck::bytes_of(&levels));
         let [albedo, normal, position] = &io.lamp;
         let bindings = PyramidBindings {
             params: ctx.buffer(&io.params),

@@ -7,6 +7,7 @@ use engine::wgpu;
 
 use super::params::{lamp_view, lamp_view_size};
 use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
+use crate::gpu_types::SenderRange;
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
 
@@ -91,7 +92,7 @@ impl RenderPass for ReferencePass {
         let senders = io.senders.0 * io.senders.1;
         let chunks = senders.div_ceil(SENDERS_PER_DISPATCH).max(1);
         while self.ranges.len() < chunks as usize {
-            self.ranges.push(uniform_buffer(device, "gi reference range", 16));
+            self.ranges.push(uniform_buffer(device, "gi reference range", std::mem::size_of::<SenderRange>() as u64));
         }
         if self.sums.as_ref().is_none_or(|(size, _)| *size != (w, h)) {
             let buffer = device.create_buffer(&wgpu::BufferDescriptor {
@@ -105,9 +106,14 @@ impl RenderPass for ReferencePass {
         let sums = &self.sums.as_ref().expect("made above").1;
         let [lamp_albedo, lamp_position, lamp_normal, albedo, normal, position] = &io.textures;
         for chunk in 0..chunks {
-            let range = [chunk * SENDERS_PER_DISPATCH, SENDERS_PER_DISPATCH, u32::from(chunk + 1 == chunks), stride];
+            let range = SenderRange {
+                first: chunk * SENDERS_PER_DISPATCH,
+                count: SENDERS_PER_DISPATCH,
+                last: u32::from(chunk + 1 == chunks),
+                stride,
+            };
             let uniform = &self.ranges[chunk as usize];
-            ctx.gpu.queue.write_buffer(uniform, 0, bytemuck::cast_slice(&range));
+            ctx.gpu.queue.write_buffer(uniform, 0, bytemuck::bytes_of(&range));
             let group = bind(
                 device,
                 &self.layout,

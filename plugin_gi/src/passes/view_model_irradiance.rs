@@ -8,6 +8,7 @@ use engine::graph::{Buffer, Handle, PassContext, PassDecl, Read, RenderPass, Wri
 use engine::wgpu;
 
 use super::params::flux_size;
+use crate::gpu_types::Probe;
 use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
 use crate::quadtree::{Quadtree, LEVELS};
 use crate::resources::GiResources;
@@ -52,7 +53,7 @@ impl ViewModelIrradiancePass {
         let module = crate::shader::module(device, "gi view model irradiance", SHADER);
         let pipeline =
             compute_pipeline(device, "gi view model irradiance", &module, "main", &[Some(globals), Some(&layout)]);
-        let probe = uniform_buffer(device, "gi view model probe", 32);
+        let probe = uniform_buffer(device, "gi view model probe", std::mem::size_of::<Probe>() as u64);
         Self { handle, gi, irradiance, probe, layout, pipeline }
     }
 }
@@ -85,8 +86,8 @@ impl RenderPass for ViewModelIrradiancePass {
                 w * h <= MAX_NODES
             })
             .unwrap_or(LEVELS - 1);
-        let probe: [u32; 8] = [point.x.to_bits(), point.y.to_bits(), point.z.to_bits(), 0, level, 0, 0, 0];
-        ctx.gpu.queue.write_buffer(&self.probe, 0, bytemuck::cast_slice(&probe));
+        let probe = Probe { position: [point.x, point.y, point.z, 0.0], level: [level, 0, 0, 0] };
+        ctx.gpu.queue.write_buffer(&self.probe, 0, bytemuck::bytes_of(&probe));
         let group = bind(
             &ctx.gpu.device,
             &self.layout,
