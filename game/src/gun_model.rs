@@ -205,7 +205,7 @@ mod tests {
         // A dry click is no shot: the gun does not kick.
         let mut empty = Weapon { magazine: 0, reserve: 0, ..rest };
         let fire = crate::sim::TickCommand { buttons: crate::sim::command::buttons::FIRE, ..Default::default() };
-        assert_eq!(empty.step(&fire), weapon::Action::DryClick);
+        assert_eq!(empty.step(&fire), weapon::WeaponAction::DryClick);
         assert_eq!(GunPose::of(&empty).recoil, 0.0);
         let half = GunPose::lerp(GunPose::default(), GunPose::of(&fired), 0.5);
         assert_eq!(half.recoil, 0.5);

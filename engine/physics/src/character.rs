@@ -63,25 +63,25 @@ impl Default for CharacterConfig {
 
 /// Which [`CharacterConfig`] field is unusable, and why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ConfigError {
+pub struct CharacterConfigError {
     pub field: &'static str,
     pub reason: &'static str,
 }
 
-impl fmt::Display for ConfigError {
+impl fmt::Display for CharacterConfigError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "character config: {} {}", self.field, self.reason)
     }
 }
 
-impl std::error::Error for ConfigError {}
+impl std::error::Error for CharacterConfigError {}
 
 impl CharacterConfig {
     /// Checks that the values describe a usable capsule and movement. The controller never
     /// panics on a bad config (it clamps the shape to something valid), but it will not move
     /// sensibly either; call this where the config is made.
-    pub fn validate(&self) -> Result<(), ConfigError> {
-        let err = |field, reason| Err(ConfigError { field, reason });
+    pub fn validate(&self) -> Result<(), CharacterConfigError> {
+        let err = |field, reason| Err(CharacterConfigError { field, reason });
         let finite = [
             ("radius", self.radius),
             ("height", self.height),

@@ -18,6 +18,6 @@ mod error;
 mod level_collision;
 mod sweep;
 
-pub use character::{CharacterBody, CharacterConfig, CharacterController, CharacterMove, ConfigError};
+pub use character::{CharacterBody, CharacterConfig, CharacterConfigError, CharacterController, CharacterMove};
 pub use error::CollisionError;
 pub use level_collision::{LevelCollision, RayHit};

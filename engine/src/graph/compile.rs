@@ -5,11 +5,11 @@ use std::cmp::Reverse;
 use std::collections::{BTreeMap, BinaryHeap};
 use std::fmt;
 
-use super::pass::{Stage, Use};
+use super::declare::{Stage, Use};
+use super::handle::ResourceId;
 use super::pool::ResourcePool;
 use super::registry::{Lifetime, Registry};
 use super::resource::ResourceDesc;
-use super::ResourceId;
 
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum GraphError {

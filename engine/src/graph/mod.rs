@@ -15,6 +15,7 @@
 
 mod compile;
 mod context;
+mod declare;
 mod handle;
 mod kept;
 mod pass;
@@ -24,15 +25,17 @@ mod resource;
 
 pub use compile::{CompiledGraph, GraphError};
 pub use context::{ImportedTexture, PassCalls, PassContext};
+pub use declare::{PassDecl, Stage};
 pub use handle::{Access, Buffer, Handle, History, Image, Read, ResourceId, ResourceKind, Write};
-pub use pass::{PassDecl, PassOrder, RenderPass, Stage};
+pub use pass::{PassOrder, RenderPass};
 pub use pool::{PoolStats, ResourcePool};
 pub use resource::{BufferDesc, ResourceDesc, SizeRule, TextureDesc};
 
 use compile::PassInfo;
 use context::{Backing, ResourceTable};
+use declare::Use;
 use kept::KeptResources;
-use pass::{Declared, Node, Use};
+use pass::{Declared, Node};
 use registry::{Lifetime, Registry};
 
 use crate::frame::Frame;

@@ -1,7 +1,7 @@
 //! Starts the frame's HDR radiance as direct + emissive; plugins then add into it.
 
+use super::core_resources::{CoreResources, HDR_FORMAT};
 use super::fullscreen::{bind_textures, color_pass, fullscreen_pipeline, textures_layout};
-use super::{CoreResources, HDR_FORMAT};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::graph::{Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};

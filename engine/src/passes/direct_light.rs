@@ -2,8 +2,8 @@
 //! glTF's metallic-roughness BRDF (shaders/brdf.wgsl), Lambertian where the texel says so.
 //! A detached headlamp is shadowed by its own depth map, `lamp.depth` (see lamp_view.rs).
 
+use super::core_resources::{CoreResources, HDR_FORMAT};
 use super::fullscreen::{color_pass, fullscreen_pipeline};
-use super::{CoreResources, HDR_FORMAT};
 use crate::globals::{texture_entry, CoreLayouts};
 use crate::gpu::Gpu;
 use crate::graph::{Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};

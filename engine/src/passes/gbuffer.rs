@@ -1,6 +1,6 @@
 //! Rasterises the scene from the camera into the G-buffer.
 
-use super::{CoreResources, HDR_FORMAT};
+use super::core_resources::{CoreResources, HDR_FORMAT};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::gpu_instances::INSTANCE_LAYOUT;

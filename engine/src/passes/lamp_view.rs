@@ -12,7 +12,7 @@
 //! and consumers bind the same names every frame. Their contents are meaningful only while
 //! detached; attached consumers read `gbuffer.*` instead (see [`super::names`]).
 
-use super::{GBuffer, HDR_FORMAT};
+use super::core_resources::{GBuffer, HDR_FORMAT};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::gpu_scene::GpuScene;

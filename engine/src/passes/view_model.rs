@@ -9,8 +9,8 @@
 //! (stage Lighting) and a GI plugin may `write` (in a later stage). The engine so knows no
 //! plugin, and without one the view models are lit directly only.
 
+use super::core_resources::{CoreResources, HDR_FORMAT};
 use super::gbuffer::{raster_pipeline, DEPTH_FORMAT};
-use super::{CoreResources, HDR_FORMAT};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::gpu_instances::INSTANCE_LAYOUT;

@@ -48,10 +48,7 @@ impl DepthFogPass {
         let stages = wgpu::ShaderStages::FRAGMENT;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("depth fog"),
-            entries: &[
-                engine::globals::uniform_entry(0, stages),
-                engine::globals::texture_entry(1, stages, false),
-            ],
+            entries: &[engine::globals::uniform_entry(0, stages), engine::globals::texture_entry(1, stages, false)],
         });
         let module = engine::shader::module(device, "depth fog", SHADER, &[]);
         // Over the frame: colour = src + dst·(1 − src.a).
@@ -93,7 +90,10 @@ impl RenderPass for DepthFogPass {
             layout: &self.layout,
             entries: &[
                 wgpu::BindGroupEntry { binding: 0, resource: self.fog.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(ctx.view(&io.position)) },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(ctx.view(&io.position)),
+                },
             ],
         });
         let mut pass = color_pass(ctx.encoder, "depth fog", ctx.view(&io.hdr), true);

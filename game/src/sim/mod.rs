@@ -297,20 +297,20 @@ impl Simulation {
         }
 
         let gunshot = match s.weapon.step(cmd) {
-            weapon::Action::Shot => true,
-            weapon::Action::DryClick => {
+            weapon::WeaponAction::Shot => true,
+            weapon::WeaponAction::DryClick => {
                 self.events.push(Event::DryFire);
                 false
             }
-            weapon::Action::ReloadStarted => {
+            weapon::WeaponAction::ReloadStarted => {
                 self.events.push(Event::ReloadStarted);
                 false
             }
-            weapon::Action::Reloaded => {
+            weapon::WeaponAction::Reloaded => {
                 self.events.push(Event::Reloaded);
                 false
             }
-            weapon::Action::Nothing => false,
+            weapon::WeaponAction::Nothing => false,
         };
         if gunshot {
             self.events.push(Event::Fired);

@@ -22,7 +22,7 @@ pub const DRY_INTERVAL: u8 = 20;
 
 /// What the gun did in a tick, for the simulation to act on and the sound to play.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Action {
+pub enum WeaponAction {
     Nothing,
     /// A round left the barrel.
     Shot,
@@ -63,7 +63,7 @@ impl Weapon {
     }
 
     /// Advances timers and handles the trigger and reload.
-    pub fn step(&mut self, cmd: &TickCommand) -> Action {
+    pub fn step(&mut self, cmd: &TickCommand) -> WeaponAction {
         self.cooldown = self.cooldown.saturating_sub(1);
         self.flash = self.flash.saturating_sub(1);
         self.click = self.click.saturating_sub(1);
@@ -73,30 +73,30 @@ impl Weapon {
                 let moved = (MAGAZINE - self.magazine).min(self.reserve);
                 self.magazine += moved;
                 self.reserve -= moved;
-                return Action::Reloaded;
+                return WeaponAction::Reloaded;
             }
-            return Action::Nothing;
+            return WeaponAction::Nothing;
         }
         let wants_reload = cmd.held(buttons::RELOAD) || (cmd.held(buttons::FIRE) && self.magazine == 0);
         if wants_reload && self.magazine < MAGAZINE && self.reserve > 0 {
             self.reloading = RELOAD_TICKS;
-            return Action::ReloadStarted;
+            return WeaponAction::ReloadStarted;
         }
         if cmd.held(buttons::FIRE) && self.cooldown == 0 {
             if self.magazine == 0 {
                 // Nothing to fire or load: a click, repeated while the trigger is held.
                 if self.click > 0 {
-                    return Action::Nothing;
+                    return WeaponAction::Nothing;
                 }
                 self.click = DRY_INTERVAL;
-                return Action::DryClick;
+                return WeaponAction::DryClick;
             }
             self.magazine -= 1;
             self.cooldown = FIRE_INTERVAL;
             self.flash = FLASH_TICKS;
-            return Action::Shot;
+            return WeaponAction::Shot;
         }
-        Action::Nothing
+        WeaponAction::Nothing
     }
 
     /// Adds rounds to the reserve; false when it is already full.
@@ -154,21 +154,21 @@ mod tests {
     fn holding_the_trigger_fires_at_its_rate_until_empty_then_reloads() {
         let mut w = Weapon::new();
         // 12 shots 9 ticks apart take 100 ticks; then the empty gun starts reloading.
-        assert_eq!((0..120).filter(|_| w.step(&fire()) == Action::Shot).count(), 12);
+        assert_eq!((0..120).filter(|_| w.step(&fire()) == WeaponAction::Shot).count(), 12);
         assert_eq!(w.magazine, 0);
         assert!(w.reloading > 0, "an empty magazine reloads when the trigger is pulled");
-        let done: Vec<Action> = (0..RELOAD_TICKS).map(|_| w.step(&TickCommand::default())).collect();
+        let done: Vec<WeaponAction> = (0..RELOAD_TICKS).map(|_| w.step(&TickCommand::default())).collect();
         assert_eq!((w.magazine, w.reserve), (12, 12));
-        assert_eq!(done.iter().filter(|a| **a == Action::Reloaded).count(), 1, "the reload's end says so, once");
+        assert_eq!(done.iter().filter(|a| **a == WeaponAction::Reloaded).count(), 1, "the reload's end says so, once");
     }
 
     #[test]
     fn an_empty_gun_with_no_reserve_clicks_at_its_own_rate() {
         let mut w = Weapon { magazine: 0, reserve: 0, ..Weapon::new() };
-        let actions: Vec<Action> = (0..60).map(|_| w.step(&fire())).collect();
-        let clicks: Vec<usize> = (0..60).filter(|&i| actions[i] == Action::DryClick).collect();
+        let actions: Vec<WeaponAction> = (0..60).map(|_| w.step(&fire())).collect();
+        let clicks: Vec<usize> = (0..60).filter(|&i| actions[i] == WeaponAction::DryClick).collect();
         assert_eq!(clicks, vec![0, DRY_INTERVAL as usize, 2 * DRY_INTERVAL as usize]);
-        assert!(actions.iter().all(|a| matches!(a, Action::DryClick | Action::Nothing)));
+        assert!(actions.iter().all(|a| matches!(a, WeaponAction::DryClick | WeaponAction::Nothing)));
         assert_eq!(w.flash, 0, "a click lights nothing");
         assert_eq!(w.cooldown, 0, "a click is no shot: the gun in hand does not kick");
     }
@@ -176,14 +176,14 @@ mod tests {
     #[test]
     fn reload_tops_up_from_the_reserve_and_no_shot_leaves_meanwhile() {
         let mut w = Weapon::new();
-        assert_eq!(w.step(&fire()), Action::Shot);
+        assert_eq!(w.step(&fire()), WeaponAction::Shot);
         assert_eq!(w.flash, FLASH_TICKS);
         let reload = TickCommand { buttons: buttons::RELOAD, ..Default::default() };
-        assert_eq!(w.step(&reload), Action::ReloadStarted);
-        assert!((0..RELOAD_TICKS).all(|_| w.step(&fire()) != Action::Shot), "no shot during a reload");
+        assert_eq!(w.step(&reload), WeaponAction::ReloadStarted);
+        assert!((0..RELOAD_TICKS).all(|_| w.step(&fire()) != WeaponAction::Shot), "no shot during a reload");
         assert_eq!((w.magazine, w.reserve), (12, 23));
         let mut full = Weapon::new();
-        assert_eq!(full.step(&reload), Action::Nothing);
+        assert_eq!(full.step(&reload), WeaponAction::Nothing);
         assert_eq!(full.reloading, 0, "a full magazine does not reload");
         w.reserve = MAX_RESERVE - 5;
         assert!(w.add_ammo(24));

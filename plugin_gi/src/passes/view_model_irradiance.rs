@@ -8,8 +8,8 @@ use engine::graph::{Buffer, Handle, PassContext, PassDecl, Read, RenderPass, Wri
 use engine::wgpu;
 
 use super::params::flux_size;
-use crate::gpu_types::Probe;
 use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
+use crate::gpu_types::Probe;
 use crate::quadtree::{Quadtree, LEVELS};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
