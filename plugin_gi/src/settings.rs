@@ -5,6 +5,8 @@
 
 mod declare;
 
+pub use declare::FieldInfo;
+
 use engine::graph::SizeRule;
 use serde::{Deserialize, Serialize};
 
@@ -37,16 +39,6 @@ declare::settings! {
         /// this many. Lower is faster and blurrier; the CPU preset uses 45.
         min_rows: u32 = 90, 16..=360, "fewest rows of the indirect target, whatever the scale";
     }
-}
-
-/// What a settings UI or the command line needs to know about one numeric setting.
-#[derive(Clone, Copy, Debug)]
-pub struct FieldInfo {
-    pub name: &'static str,
-    pub min: f64,
-    pub max: f64,
-    pub integer: bool,
-    pub help: &'static str,
 }
 
 /// Settings of the light-volume GI (before the pyramid gather) that older replays and config

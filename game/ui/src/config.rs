@@ -105,6 +105,21 @@ impl Config {
         self.mouse_sensitivity * Self::BASE_RADIANS_PER_PIXEL
     }
 
+    /// The file's text, with a comment on each setting.
+    pub fn to_toml(&self) -> String {
+        format::write(self, PLAIN_SECTIONS, KEYS, OWNERS)
+    }
+
+    /// Reads a config from its text; `path` only names the file in errors.
+    pub fn from_toml(text: &str, path: &Path) -> Result<Config, ConfigError> {
+        format::parse(text, PLAIN_SECTIONS, KEYS, OWNERS).map_err(|e| ConfigError {
+            path: path.to_owned(),
+            line: e.line,
+            key: e.key,
+            problem: e.problem,
+        })
+    }
+
     /// Reads the config file; a missing file gives the defaults.
     pub fn load(path: &Path) -> Result<Config, ConfigError> {
         match engine::scene::limits::read_text(path, engine::scene::limits::MAX_TEXT_BYTES) {

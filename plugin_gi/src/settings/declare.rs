@@ -1,6 +1,19 @@
 //! The macro that turns the one list of GI settings (in `settings.rs`) into the struct and what
 //! is derived from it, so that a setting's name, type, default, range and meaning are written
 //! once.
+//!
+//! It names nothing of `settings.rs` (whose list invokes it): what its expansion needs,
+//! [`FieldInfo`] and [`Number`], is here, so the two modules do not import each other.
+
+/// What a settings UI or the command line needs to know about one numeric setting.
+#[derive(Clone, Copy, Debug)]
+pub struct FieldInfo {
+    pub name: &'static str,
+    pub min: f64,
+    pub max: f64,
+    pub integer: bool,
+    pub help: &'static str,
+}
 
 /// A numeric setting's type as access by name sees it: every value travels as an f64 (the
 /// command line, sliders, config files and replays all share that), whole-number types round.
@@ -80,8 +93,8 @@ macro_rules! settings {
             pub const ENABLED_HELP: &'static str = $enabled_help;
 
             /// The numeric settings, their valid ranges and meaning, in the list's order.
-            pub const FIELDS: &'static [$crate::settings::FieldInfo] = &[$(
-                $crate::settings::FieldInfo {
+            pub const FIELDS: &'static [$crate::settings::declare::FieldInfo] = &[$(
+                $crate::settings::declare::FieldInfo {
                     name: stringify!($field),
                     min: $min as f64,
                     max: $max as f64,

@@ -1,39 +1,13 @@
-//! The macro that turns the one list of config keys (in `config.rs`) into the [`Config`] struct
-//! and what the file needs of it, so that a key's name, type, default, range and comment are
-//! written once.
+//! The macro that turns the one list of config keys (in `config.rs`) into the
+//! [`Config`](super::Config) struct and what the file needs of it, so that a key's name, type,
+//! default, range and comment are written once.
+//!
+//! It names nothing of `config.rs` (which invokes it): its expansion names only the generic
+//! machinery of [`super::format`] and [`super::sections`] and what the invoker passes in, so
+//! that no two of the config, its macro, the format and the sections import each other.
 
-use std::ops::RangeInclusive;
-
-use toml::Value;
-
-use super::format::{File, ParseError};
-use super::Config;
-
-/// One key of a plain section (`[controls]`, `[video]`, …), as the file writes and reads it.
-pub(super) struct Key {
-    pub(super) section: &'static str,
-    pub(super) name: &'static str,
-    /// The comment line above the key, with `{range}` standing for its range; a key whose name
-    /// says it all has none.
-    pub(super) comment: Option<&'static str>,
-    /// The values a number may take.
-    pub(super) range: Option<RangeInclusive<f32>>,
-    /// The key's value as the file writes it.
-    pub(super) write: fn(&Config) -> String,
-    /// Takes the file's value for the key, or says what is wrong with it.
-    pub(super) read: fn(&mut Config, &Value, &Key) -> Result<(), String>,
-}
-
-/// A field whose value fills whole sections of the file (the key bindings, the gamepad, the GI):
-/// its type writes and reads them, through [`super::sections::OwnSections`].
-pub(super) struct Owner {
-    pub(super) sections: &'static [&'static str],
-    pub(super) write: fn(&Config, &mut String),
-    pub(super) read: fn(&mut Config, &File<'_>) -> Result<(), ParseError>,
-}
-
-/// Declares [`Config`] from one list in two parts. `keys`: the plain sections, in the file's
-/// order, each a `[section]` line and then one entry a key:
+/// Declares [`Config`](super::Config) from one list in two parts. `keys`: the plain sections, in
+/// the file's order, each a `[section]` line and then one entry a key:
 ///
 /// ```text
 /// /// Documentation of the field (optional).
@@ -103,8 +77,8 @@ macro_rules! config_file {
         const PLAIN_SECTIONS: &[&str] = &[$(stringify!($section)),*];
 
         /// Every key of the plain sections, in the file's order.
-        const KEYS: &[$crate::config::declare::Key] = &[$($(
-            $crate::config::declare::Key {
+        const KEYS: &[$crate::config::format::Key<$name>] = &[$($(
+            $crate::config::format::Key {
                 section: stringify!($section),
                 name: $crate::config::declare::config_file!(@key_name $field $($key)?),
                 comment: $crate::config::declare::config_file!(@some $($comment)?),
@@ -118,8 +92,8 @@ macro_rules! config_file {
         )*)*];
 
         /// The fields that fill sections of their own, in the file's order.
-        const OWNERS: &[$crate::config::declare::Owner] = &[$(
-            $crate::config::declare::Owner {
+        const OWNERS: &[$crate::config::format::Owner<$name>] = &[$(
+            $crate::config::format::Owner {
                 sections: <$own_ty as $crate::config::sections::OwnSections>::SECTIONS,
                 write: |c, out| $crate::config::sections::OwnSections::write(&c.$own, out),
                 read: |c, file| $crate::config::sections::OwnSections::read(&mut c.$own, file),

@@ -1,7 +1,9 @@
-//! The config file's TOML, both ways, worked from the tables the list in `config.rs` declares.
-//! Parsing keeps every key's position (`toml::Spanned`) so an error can name its line; it checks
-//! each value itself rather than through serde derives, so the messages speak of keys and
-//! ranges, not of Rust types.
+//! The config file's TOML, both ways, as machinery that knows no [`Config`](super::Config): the
+//! writer and the parser work from the tables that the list in `config.rs` declares (passed in
+//! as arguments), so that this module names nothing of the config and the config, its macro
+//! and the sections may all use it. Parsing keeps every key's position (`toml::Spanned`) so an
+//! error can name its line; it checks each value itself rather than through serde derives, so
+//! the messages speak of keys and ranges, not of Rust types.
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -9,8 +11,29 @@ use std::ops::{Range, RangeInclusive};
 
 use toml::{Spanned, Value};
 
-use super::declare::Key;
-use super::{Config, KEYS, OWNERS, PLAIN_SECTIONS};
+/// One key of a plain section (`[controls]`, `[video]`, …) of a config `C`, as the file writes
+/// and reads it.
+pub(super) struct Key<C> {
+    pub(super) section: &'static str,
+    pub(super) name: &'static str,
+    /// The comment line above the key, with `{range}` standing for its range; a key whose name
+    /// says it all has none.
+    pub(super) comment: Option<&'static str>,
+    /// The values a number may take.
+    pub(super) range: Option<RangeInclusive<f32>>,
+    /// The key's value as the file writes it.
+    pub(super) write: fn(&C) -> String,
+    /// Takes the file's value for the key, or says what is wrong with it.
+    pub(super) read: fn(&mut C, &Value, &Key<C>) -> Result<(), String>,
+}
+
+/// A field of a config `C` whose value fills whole sections of the file (the key bindings, the
+/// gamepad, the GI): its type writes and reads them, through [`super::sections::OwnSections`].
+pub(super) struct Owner<C> {
+    pub(super) sections: &'static [&'static str],
+    pub(super) write: fn(&C, &mut String),
+    pub(super) read: fn(&mut C, &File<'_>) -> Result<(), ParseError>,
+}
 
 /// A problem found in the text; [`super::ConfigError`] adds the file.
 pub(super) struct ParseError {
@@ -25,44 +48,27 @@ const HEADER: &str = "\
 # file is then kept as config.toml.bad while the game runs with the defaults.
 ";
 
-// Config's two TOML methods are written here, beside the format they are, so that the config's
-// module does not import its own format back.
-impl Config {
-    /// The file's text, with a comment on each setting.
-    pub fn to_toml(&self) -> String {
-        write(self)
-    }
-
-    /// Reads a config from its text; `path` only names the file in errors.
-    pub fn from_toml(text: &str, path: &std::path::Path) -> Result<Config, super::ConfigError> {
-        parse(text).map_err(|e| super::ConfigError {
-            path: path.to_owned(),
-            line: e.line,
-            key: e.key,
-            problem: e.problem,
-        })
-    }
-}
-
-pub(super) fn write(c: &Config) -> String {
+/// The file's text for `c`, with a comment on each setting: the plain sections in their order,
+/// each with its keys, then the owners' sections.
+pub(super) fn write<C>(c: &C, plain_sections: &[&str], keys: &[Key<C>], owners: &[Owner<C>]) -> String {
     let mut out = String::from(HEADER);
-    for section in PLAIN_SECTIONS {
+    for section in plain_sections {
         let _ = write!(out, "\n[{section}]\n");
-        for key in KEYS.iter().filter(|k| k.section == *section) {
+        for key in keys.iter().filter(|k| k.section == *section) {
             if let Some(comment) = key.comment {
                 let _ = writeln!(out, "# {}", with_range(comment, key));
             }
             let _ = writeln!(out, "{} = {}", key.name, (key.write)(c));
         }
     }
-    for owner in OWNERS {
+    for owner in owners {
         (owner.write)(c, &mut out);
     }
     out
 }
 
 /// A key's comment as written: `{range}` replaced by the key's range.
-pub(super) fn with_range(comment: &str, key: &Key) -> String {
+pub(super) fn with_range<C>(comment: &str, key: &Key<C>) -> String {
     match &key.range {
         Some(range) => comment.replace("{range}", &range_text(range)),
         None => comment.to_owned(),
@@ -77,7 +83,7 @@ pub(super) fn range_text(range: &RangeInclusive<f32>) -> String {
 /// How a plain key's value is written and read: a number in its range, or true/false.
 pub(super) trait KeyValue: Sized {
     fn write(&self) -> String;
-    fn read(value: &Value, key: &Key) -> Result<Self, String>;
+    fn read<C>(value: &Value, key: &Key<C>) -> Result<Self, String>;
 }
 
 impl KeyValue for f32 {
@@ -87,7 +93,7 @@ impl KeyValue for f32 {
         format!("{self:?}")
     }
 
-    fn read(value: &Value, key: &Key) -> Result<Self, String> {
+    fn read<C>(value: &Value, key: &Key<C>) -> Result<Self, String> {
         let range = key.range.as_ref().unwrap_or_else(|| panic!("the number {} declares no range", key.name));
         number(value, range)
     }
@@ -98,7 +104,7 @@ impl KeyValue for bool {
         self.to_string()
     }
 
-    fn read(value: &Value, _: &Key) -> Result<Self, String> {
+    fn read<C>(value: &Value, _: &Key<C>) -> Result<Self, String> {
         boolean(value)
     }
 }
@@ -125,11 +131,17 @@ impl File<'_> {
 }
 
 /// Every section that the file may have, in its order.
-pub(super) fn section_names() -> Vec<&'static str> {
-    PLAIN_SECTIONS.iter().copied().chain(OWNERS.iter().flat_map(|o| o.sections.iter().copied())).collect()
+pub(super) fn section_names<C>(plain_sections: &[&'static str], owners: &[Owner<C>]) -> Vec<&'static str> {
+    plain_sections.iter().copied().chain(owners.iter().flat_map(|o| o.sections.iter().copied())).collect()
 }
 
-pub(super) fn parse(text: &str) -> Result<Config, ParseError> {
+/// Reads a config from the file's text: its default, with what the file says of each key.
+pub(super) fn parse<C: Default>(
+    text: &str,
+    plain_sections: &[&'static str],
+    keys: &[Key<C>],
+    owners: &[Owner<C>],
+) -> Result<C, ParseError> {
     let syntax = |e: toml::de::Error| ParseError {
         line: e.span().map(|span| line_of(text, span)),
         key: None,
@@ -138,7 +150,7 @@ pub(super) fn parse(text: &str) -> Result<Config, ParseError> {
 
     // Every top-level key first, so that a stray one is named rather than failing the sections.
     let top: Entries = toml::from_str(text).map_err(syntax)?;
-    let known = section_names();
+    let known = section_names(plain_sections, owners);
     for (key, value) in by_position(&top) {
         if !known.contains(&key.get_ref().as_str()) {
             return Err(key_error(text, key, "", format!("unknown key (the sections are {})", list(&known))));
@@ -149,9 +161,9 @@ pub(super) fn parse(text: &str) -> Result<Config, ParseError> {
     }
     let file = File { text, sections: toml::from_str(text).map_err(syntax)? };
 
-    let mut c = Config::default();
-    for section in PLAIN_SECTIONS {
-        let keys: Vec<&Key> = KEYS.iter().filter(|k| k.section == *section).collect();
+    let mut c = C::default();
+    for section in plain_sections {
+        let keys: Vec<&Key<C>> = keys.iter().filter(|k| k.section == *section).collect();
         for (name, value) in file.entries(section) {
             let Some(key) = keys.iter().find(|k| k.name == name.get_ref()) else {
                 let known: Vec<&str> = keys.iter().map(|k| k.name).collect();
@@ -160,7 +172,7 @@ pub(super) fn parse(text: &str) -> Result<Config, ParseError> {
             (key.read)(&mut c, value.get_ref(), key).map_err(|problem| file.error(name, section, problem))?;
         }
     }
-    for owner in OWNERS {
+    for owner in owners {
         (owner.read)(&mut c, &file)?;
     }
     Ok(c)
