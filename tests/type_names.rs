@@ -51,7 +51,14 @@ fn names_in_two_crates(crates: &[(String, Vec<String>)]) -> Vec<(String, Vec<Str
 fn no_public_type_name_is_declared_in_two_crates() {
     let root = root();
     let dirs = [
-        "engine", "engine/scene", "engine/physics", "engine/audio", "plugin_gi", "game", "game/ui", "examples/depth_fog",
+        "engine",
+        "engine/scene",
+        "engine/physics",
+        "engine/audio",
+        "plugin_gi",
+        "game",
+        "game/ui",
+        "examples/depth_fog",
     ];
     let crates: Vec<(String, Vec<String>)> = dirs
         .iter()
