@@ -258,6 +258,24 @@ fn the_lamp_is_set_down_or_thrown_and_picked_up_only_within_reach() {
 }
 
 #[test]
+fn the_lamp_leaving_the_head_or_coming_back_cuts_the_light_and_nothing_else_does() {
+    let mut s = sim(world(vec![], vec![], None, None));
+    let cut = |s: &Simulation| s.events.iter().any(Event::cuts_the_light);
+    run(&mut s, 10, TickCommand { forward: 127, ..Default::default() });
+    assert!(!cut(&s), "walking keeps the renderer's history: {:?}", s.events);
+    s.step(&press(buttons::LAMP_TOGGLE));
+    assert!(!cut(&s), "the lamp switched off is light the history can follow");
+    s.step(&press(buttons::LAMP_TOGGLE));
+    s.step(&press(buttons::LAMP_DETACH));
+    assert!(cut(&s), "set down: {:?}", s.events);
+    run(&mut s, 60, idle());
+    s.step(&press(buttons::LAMP_DETACH));
+    assert!(cut(&s), "picked up: {:?}", s.events);
+    s.step(&press(buttons::LAMP_THROW));
+    assert!(cut(&s), "thrown: {:?}", s.events);
+}
+
+#[test]
 fn a_thrown_lamp_bounces_off_walls() {
     let mut s = sim(world(vec![], vec![], None, Some(-3.0)));
     s.step(&press(buttons::LAMP_THROW));
