@@ -21,7 +21,7 @@ pub struct GiStats {
 impl GiStats {
     /// The calls of the GI's passes (their names begin with `gi_`) in the renderer's last frame.
     pub fn of(renderer: &Renderer) -> Self {
-        let gi = renderer.graph().last_calls().iter().filter(|(name, _)| name.starts_with("gi_"));
+        let gi = renderer.graph().last_calls().filter(|(name, _)| name.starts_with("gi_"));
         gi.fold(Self::default(), |s, (_, c)| Self { dispatches: s.dispatches + c.dispatches, draws: s.draws + c.draws })
     }
 }

@@ -159,7 +159,7 @@ impl CompiledGraph {
                 }
             }
         }
-        for (i, p) in passes.iter().enumerate() {
+        for p in passes {
             for u in p.uses {
                 // A history's previous frame exists when its current has a creator.
                 let id = registry.primary(u.id());
@@ -167,15 +167,17 @@ impl CompiledGraph {
                     return Err(GraphError::MissingInput { pass: p.name.into(), resource: label(id) });
                 }
             }
-            for (id, list) in &writers {
-                if let Some(&(c, ResourceDesc::Buffer(desc))) = creator.get(id) {
-                    if desc.usage.contains(wgpu::BufferUsages::UNIFORM) && list.contains(&i) && c != i {
-                        return Err(GraphError::UniformWrittenTwice {
-                            resource: label(*id),
-                            creator: passes[c].name.into(),
-                            writer: p.name.into(),
-                        });
-                    }
+        }
+        // One writer per uniform a frame: its creator.
+        for (id, list) in &writers {
+            let Some(&(c, ResourceDesc::Buffer(desc))) = creator.get(id) else { continue };
+            if desc.usage.contains(wgpu::BufferUsages::UNIFORM) {
+                if let Some(&w) = list.iter().find(|&&w| w != c) {
+                    return Err(GraphError::UniformWrittenTwice {
+                        resource: label(*id),
+                        creator: passes[c].name.into(),
+                        writer: passes[w].name.into(),
+                    });
                 }
             }
         }

@@ -27,10 +27,10 @@ pub(crate) struct KeptResources {
 impl KeptResources {
     /// Makes sure each of `wanted` (by its primary id; `pair` says whether it is a history
     /// pair) exists with its descriptor resolved for a view of `view` pixels.
-    pub fn prepare(
+    pub fn prepare<'l>(
         &mut self,
         device: &wgpu::Device,
-        wanted: impl Iterator<Item = (ResourceId, ResourceDesc, bool, String)>,
+        wanted: impl Iterator<Item = (ResourceId, ResourceDesc, bool, &'l str)>,
         view: (u32, u32),
     ) {
         for (id, desc, pair, label) in wanted {
@@ -40,7 +40,7 @@ impl KeptResources {
             }
             let count = if pair { 2 } else { 1 };
             self.allocations += count;
-            let physical = (0..count).map(|_| create(device, &label, key)).collect();
+            let physical = (0..count).map(|_| create(device, label, key)).collect();
             self.kept.insert(id, Kept { key, physical, flip: false, age: 0 });
         }
     }

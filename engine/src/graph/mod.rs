@@ -64,8 +64,8 @@ pub struct RenderGraph {
     /// Whether to time passes; the timer is made on the first timed frame.
     timing: bool,
     timer: Option<GpuTimer>,
-    /// Each scheduled pass of the last frame and what it recorded.
-    calls: Vec<(String, PassCalls)>,
+    /// Each scheduled pass of the last frame (its index in `passes`) and what it recorded.
+    calls: Vec<(usize, PassCalls)>,
 }
 
 impl RenderGraph {
@@ -195,7 +195,7 @@ impl RenderGraph {
         let registry = &self.registry;
         let wanted = compiled.kept.iter().map(|(&id, &desc)| {
             let pair = matches!(registry.lifetime(id), Lifetime::History { .. });
-            (id, desc, pair, registry.label(id).to_owned())
+            (id, desc, pair, registry.label(id))
         });
         self.kept.prepare(&gpu.device, wanted, size);
         Ok(())
@@ -223,8 +223,8 @@ impl RenderGraph {
 
     /// Each pass of the last frame, in execution order, and the draws and dispatches it
     /// recorded.
-    pub fn last_calls(&self) -> &[(String, PassCalls)] {
-        &self.calls
+    pub fn last_calls(&self) -> impl Iterator<Item = (&str, PassCalls)> {
+        self.calls.iter().map(|&(i, calls)| (self.passes[i].node.name(), calls))
     }
 
     pub fn pool_stats(&self) -> PoolStats {
@@ -303,7 +303,7 @@ impl RenderGraph {
             if let Some(t) = &timer {
                 t.end(encoder, i);
             }
-            self.calls.push((node.name().to_owned(), calls));
+            self.calls.push((index, calls));
         }
         if let Some(t) = timer {
             t.finish(encoder, order.iter().map(|&i| self.passes[i].node.name().to_owned()).collect());
