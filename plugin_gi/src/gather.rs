@@ -3,14 +3,15 @@
 //! a tile, then the few tiles whose cut filled up walked again side by side (an indirect
 //! dispatch; both shaders/gi/cuts.wgsl), then the sum, one workgroup a tile
 //! (shaders/gi/gather.wgsl). The cuts buffer is a graph resource (see [`cuts_desc`]); the
-//! bands' small buffers are this gather's own scratch.
+//! retry list is this gather's own scratch. The three calls cover every tile at once, so their
+//! number never depends on the resolution: the indirect target is kept small enough
+//! ([`fit_cuts_budget`]) that every tile's cut fits the budget.
 
 use engine::graph::BufferDesc;
 use engine::wgpu;
-use engine::wgpu::util::DeviceExt;
 
 use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
-use crate::gpu_types::{Band, GATHER_STATS_SIZE, RETRY_HEADER};
+use crate::gpu_types::{GATHER_STATS_SIZE, RETRY_HEADER};
 use crate::quadtree::Quadtree;
 use crate::shader::module;
 
@@ -23,7 +24,7 @@ pub struct GatherTargets<'a> {
     pub params: &'a wgpu::Buffer,
     pub levels: &'a wgpu::Buffer,
     pub nodes: &'a wgpu::Buffer,
-    /// Room for one band's cuts ([`cuts_desc`]).
+    /// Room for every tile's cut ([`cuts_desc`]).
     pub cuts: &'a wgpu::Buffer,
     pub normal: &'a wgpu::TextureView,
     pub position: &'a wgpu::TextureView,
@@ -47,15 +48,12 @@ pub struct Gather {
     retry_pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
-    /// Per band of the last indirect target and pyramid (see [`Bands`]), its first row (a
-    /// uniform) and its full tiles.
-    bands: Option<(Bands, Vec<BandBuffers>)>,
+    /// The retry list, sized for the last layout's tiles.
+    retry: Option<(CutsLayout, RetryBuffers)>,
 }
 
-/// What one band's dispatches share besides the cuts.
-struct BandBuffers {
-    /// The band's first row and its number of rows.
-    first: wgpu::Buffer,
+/// What the cuts' second walk needs besides the cuts.
+struct RetryBuffers {
     /// The tiles whose first walk filled the cut (a count, then a slot and a ratio each).
     retry: wgpu::Buffer,
     /// The workgroups of the retry dispatch, as its indirect arguments.
@@ -72,47 +70,66 @@ pub const CUT_MAX: u32 = 1536;
 /// Invocations (tiles) per workgroup of the cuts pass.
 const CUTS_GROUP: u32 = 8;
 
-/// At most this much memory holds the cuts: a larger target is gathered a band of tile rows
-/// at a time (two dispatches a band), so no setting can ask for an unbounded buffer. Below
-/// the 128 MiB storage binding every wgpu device allows.
-const CUTS_BUDGET_BYTES: u64 = 32 << 20;
+/// At most this much memory holds the cuts, so no setting can ask for an unbounded buffer: an
+/// indirect target with more tiles than fit is made smaller ([`fit_cuts_budget`]). Below the
+/// 128 MiB storage binding every wgpu device allows; 1,365 tiles of 1,536 lights, e.g. 320×180
+/// receivers at 2560×1440 with the default scale.
+const CUTS_BUDGET_BYTES: u64 = 64 << 20;
 
-/// The bands an indirect target of `size` is gathered in, over a pyramid on a flux G-buffer
-/// of `flux_size`.
-pub fn bands(size: (u32, u32), flux_size: (u32, u32)) -> Bands {
-    Bands::new(size, &Quadtree::new(flux_size.0, flux_size.1), CUTS_BUDGET_BYTES)
+/// The cuts of an indirect target of `size` over a pyramid on a flux G-buffer of `flux_size`.
+pub fn cuts_layout(size: (u32, u32), flux_size: (u32, u32)) -> CutsLayout {
+    CutsLayout::new(size, &Quadtree::new(flux_size.0, flux_size.1))
 }
 
-/// The cuts buffer of one band.
-pub fn cuts_desc(bands: &Bands) -> BufferDesc {
-    BufferDesc { size: bands.bytes(), usage: wgpu::BufferUsages::STORAGE }
+/// The largest indirect target no larger than `size`, same shape, whose cuts over a pyramid on
+/// `flux_size` fit the budget; `size` itself at every size people play.
+pub fn fit_cuts_budget(size: (u32, u32), flux_size: (u32, u32)) -> (u32, u32) {
+    let fits = |s: (u32, u32)| cuts_layout(s, flux_size).bytes() <= CUTS_BUDGET_BYTES;
+    if fits(size) {
+        return size;
+    }
+    // Scale both sides by the same factor, the largest that fits (bisection on rows).
+    let scaled = |rows: u32| {
+        let w = (u64::from(size.0) * u64::from(rows) / u64::from(size.1.max(1))).max(1) as u32;
+        (w, rows)
+    };
+    let (mut lo, mut hi) = (1, size.1);
+    while lo + 1 < hi {
+        let mid = (lo + hi) / 2;
+        if fits(scaled(mid)) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    scaled(lo)
 }
 
-/// How the tiles of an indirect target are gathered: `rows` tile rows at a time, `count`
-/// times, each tile's cut `stride` vec4s (its counts, its centre, then one a light with room
-/// for the classes' padding: see gi_common.wgsl).
+/// The cuts buffer.
+pub fn cuts_desc(layout: &CutsLayout) -> BufferDesc {
+    BufferDesc { size: layout.bytes(), usage: wgpu::BufferUsages::STORAGE }
+}
+
+/// How the cuts of an indirect target lie in their buffer: `tiles` across and down, each
+/// tile's cut `stride` vec4s (its counts, its centre, then one a light with room for the
+/// classes' padding: see gi_common.wgsl).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Bands {
+pub struct CutsLayout {
     pub tiles: (u32, u32),
     pub stride: u32,
-    pub rows: u32,
-    pub count: u32,
 }
 
-impl Bands {
-    /// For an indirect target of `size` over `tree`, with at most `budget` bytes of cuts.
-    pub fn new(size: (u32, u32), tree: &Quadtree, budget: u64) -> Self {
+impl CutsLayout {
+    /// For an indirect target of `size` over `tree`.
+    pub fn new(size: (u32, u32), tree: &Quadtree) -> Self {
         let (w, h) = tree.size(crate::quadtree::TOP);
         let tiles = (size.0.div_ceil(TILE), size.1.div_ceil(TILE));
-        let stride = 2 + 2 * CUT_MAX.max(w * h);
-        let row_bytes = tiles.0 as u64 * stride as u64 * 16;
-        let rows = (budget / row_bytes).clamp(1, tiles.1.max(1) as u64) as u32;
-        Self { tiles, stride, rows, count: tiles.1.div_ceil(rows) }
+        Self { tiles, stride: 2 + 2 * CUT_MAX.max(w * h) }
     }
 
-    /// Bytes of the cuts buffer: one band's tiles.
+    /// Bytes of the cuts buffer.
     pub fn bytes(&self) -> u64 {
-        self.tiles.0 as u64 * self.rows as u64 * self.stride as u64 * 16
+        u64::from(self.tiles.0) * u64::from(self.tiles.1) * u64::from(self.stride) * 16
     }
 }
 
@@ -131,7 +148,6 @@ impl Gather {
                 storage(false),
                 storage(false),
                 storage(false),
-                S::Uniform,
                 storage(false),
             ],
         );
@@ -148,7 +164,6 @@ impl Gather {
                 storage(true),
                 S::Texture,
                 S::StorageTexture(wgpu::TextureFormat::Rgba32Float),
-                S::Uniform,
             ],
         );
         let cuts_module = module(device, "gi cuts", CUTS_SHADER);
@@ -168,107 +183,86 @@ impl Gather {
         );
         let module = module(device, "gi gather", GATHER_SHADER);
         let pipeline = compute_pipeline(device, "gi gather", &module, "main", &[Some(globals), Some(&layout)]);
-        Self { cuts_layout, cuts_pipeline, retry_args_layout, retry_pipeline, layout, pipeline, bands: None }
+        Self { cuts_layout, cuts_pipeline, retry_args_layout, retry_pipeline, layout, pipeline, retry: None }
     }
 
-    /// Records the gather in `bands` (from [`bands`], as `t.cuts` was sized); returns the
-    /// number of dispatches.
+    /// Records the gather into `t` laid out as `layout` (as `t.cuts` was sized); returns the
+    /// number of dispatches, always three.
     pub fn record(
         &mut self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         globals: &wgpu::BindGroup,
-        bands: Bands,
+        layout: CutsLayout,
         t: &GatherTargets<'_>,
     ) -> u32 {
-        if self.bands.as_ref().is_none_or(|(b, _)| *b != bands) {
-            let tiles_per_band = u64::from(bands.tiles.0 * bands.rows);
-            let per_band = (0..bands.count)
-                .map(|i| BandBuffers {
-                    first: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("gi band"),
-                        contents: bytemuck::bytes_of(&Band {
-                            first_row: i * bands.rows,
-                            rows: bands.rows,
-                            pad: [0; 2],
-                        }),
-                        usage: wgpu::BufferUsages::UNIFORM,
-                    }),
-                    retry: device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some("gi cuts retry"),
-                        size: RETRY_HEADER + 8 * tiles_per_band,
-                        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                        mapped_at_creation: false,
-                    }),
-                    retry_args: device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some("gi cuts retry arguments"),
-                        size: std::mem::size_of::<wgpu::util::DispatchIndirectArgs>() as u64,
-                        usage: wgpu::BufferUsages::STORAGE
-                            | wgpu::BufferUsages::INDIRECT
-                            | wgpu::BufferUsages::COPY_DST,
-                        mapped_at_creation: false,
-                    }),
-                })
-                .collect();
-            self.bands = Some((bands, per_band));
+        if self.retry.as_ref().is_none_or(|(l, _)| *l != layout) {
+            let tiles = u64::from(layout.tiles.0 * layout.tiles.1);
+            let buffers = RetryBuffers {
+                retry: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("gi cuts retry"),
+                    size: RETRY_HEADER + 8 * tiles,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+                retry_args: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("gi cuts retry arguments"),
+                    size: std::mem::size_of::<wgpu::util::DispatchIndirectArgs>() as u64,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+            };
+            self.retry = Some((layout, buffers));
         }
-        let (_, per_band) = self.bands.as_ref().expect("sized above");
-        let cuts = t.cuts;
+        let (_, retry) = self.retry.as_ref().expect("sized above");
         encoder.clear_buffer(t.stats, 0, Some(GATHER_STATS_SIZE));
-        for band in per_band {
-            // The cuts pass sets the arguments' y and z, and counts x up from 0.
-            encoder.clear_buffer(&band.retry, 0, Some(RETRY_HEADER));
-            encoder.clear_buffer(&band.retry_args, 0, None);
-        }
+        // The cuts pass sets the arguments' y and z, and counts x up from 0.
+        encoder.clear_buffer(&retry.retry, 0, Some(RETRY_HEADER));
+        encoder.clear_buffer(&retry.retry_args, 0, None);
+        let cuts_group = bind(
+            device,
+            &self.cuts_layout,
+            &[
+                R::Buffer(t.params),
+                R::Buffer(t.levels),
+                R::Buffer(t.nodes),
+                R::View(t.normal),
+                R::View(t.position),
+                R::Buffer(t.cuts),
+                R::Buffer(t.stats),
+                R::Buffer(t.lights),
+                R::Buffer(&retry.retry),
+            ],
+        );
+        let retry_args = bind(device, &self.retry_args_layout, &[R::Buffer(&retry.retry_args)]);
+        let group = bind(
+            device,
+            &self.layout,
+            &[
+                R::Buffer(t.params),
+                R::Buffer(t.levels),
+                R::View(t.normal),
+                R::View(t.position),
+                R::View(t.irradiance),
+                R::Buffer(t.cuts),
+                R::View(t.accumulate),
+                R::View(t.bounce),
+            ],
+        );
         let mut pass = encoder
             .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi gather"), timestamp_writes: None });
         pass.set_bind_group(0, globals, &[]);
-        for band in per_band {
-            let first = &band.first;
-            let cuts_group = bind(
-                device,
-                &self.cuts_layout,
-                &[
-                    R::Buffer(t.params),
-                    R::Buffer(t.levels),
-                    R::Buffer(t.nodes),
-                    R::View(t.normal),
-                    R::View(t.position),
-                    R::Buffer(cuts),
-                    R::Buffer(t.stats),
-                    R::Buffer(t.lights),
-                    R::Buffer(first),
-                    R::Buffer(&band.retry),
-                ],
-            );
-            let retry_args = bind(device, &self.retry_args_layout, &[R::Buffer(&band.retry_args)]);
-            let group = bind(
-                device,
-                &self.layout,
-                &[
-                    R::Buffer(t.params),
-                    R::Buffer(t.levels),
-                    R::View(t.normal),
-                    R::View(t.position),
-                    R::View(t.irradiance),
-                    R::Buffer(cuts),
-                    R::View(t.accumulate),
-                    R::View(t.bounce),
-                    R::Buffer(first),
-                ],
-            );
-            pass.set_pipeline(&self.cuts_pipeline);
-            pass.set_bind_group(1, &cuts_group, &[]);
-            pass.set_bind_group(2, &retry_args, &[]);
-            pass.dispatch_workgroups((bands.tiles.0 * bands.rows).div_ceil(CUTS_GROUP), 1, 1);
-            pass.set_pipeline(&self.retry_pipeline);
-            pass.set_bind_group(1, &cuts_group, &[]);
-            pass.dispatch_workgroups_indirect(&band.retry_args, 0);
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(1, &group, &[]);
-            pass.dispatch_workgroups(bands.tiles.0, bands.rows, 1);
-        }
-        3 * bands.count
+        pass.set_pipeline(&self.cuts_pipeline);
+        pass.set_bind_group(1, &cuts_group, &[]);
+        pass.set_bind_group(2, &retry_args, &[]);
+        pass.dispatch_workgroups((layout.tiles.0 * layout.tiles.1).div_ceil(CUTS_GROUP), 1, 1);
+        pass.set_pipeline(&self.retry_pipeline);
+        pass.set_bind_group(1, &cuts_group, &[]);
+        pass.dispatch_workgroups_indirect(&retry.retry_args, 0);
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(1, &group, &[]);
+        pass.dispatch_workgroups(layout.tiles.0, layout.tiles.1, 1);
+        3
     }
 }
 
@@ -286,23 +280,24 @@ mod tests {
     #[test]
     fn every_tile_has_room_for_its_cut_and_the_whole_top_level() {
         let small = Quadtree::new(160, 90);
-        let one = Bands::new((160, 90), &small, CUTS_BUDGET_BYTES);
-        assert_eq!(one, Bands { tiles: (20, 12), stride: 2 + 2 * CUT_MAX, rows: 12, count: 1 });
+        let one = CutsLayout::new((160, 90), &small);
+        assert_eq!(one, CutsLayout { tiles: (20, 12), stride: 2 + 2 * CUT_MAX });
         assert_eq!(one.bytes(), 20 * 12 * (2 + 2 * CUT_MAX as u64) * 16);
         // A top level of 60×34 lights is more than a cut holds: each tile has room for all.
         let large = Quadtree::new(3840, 2160);
-        assert_eq!(Bands::new((8, 8), &large, CUTS_BUDGET_BYTES).stride, 2 + 2 * 60 * 34);
+        assert_eq!(CutsLayout::new((8, 8), &large).stride, 2 + 2 * 60 * 34);
     }
 
     #[test]
-    fn a_large_target_is_gathered_in_bands_within_the_budget() {
-        // 3840×2160 at full resolution: 480×270 tiles, 4,082 vec4s each.
-        let tree = Quadtree::new(3840, 2160);
-        let bands = Bands::new((3840, 2160), &tree, CUTS_BUDGET_BYTES);
-        assert!(bands.bytes() <= CUTS_BUDGET_BYTES, "{bands:?}");
-        assert!(bands.rows * bands.count >= 270 && (bands.count - 1) * bands.rows < 270, "{bands:?}");
-        // Even a budget too small for one row gathers a row at a time.
-        let tiny = Bands::new((3840, 2160), &tree, 1);
-        assert_eq!((tiny.rows, tiny.count), (1, 270));
+    fn play_sizes_keep_their_target_and_larger_ones_shrink_to_fit_the_budget() {
+        // The defaults' targets up to 2560×1440 (their flux G-buffers halved three times).
+        for (size, flux) in [((160, 90), (160, 90)), ((240, 135), (240, 135)), ((320, 180), (320, 180))] {
+            assert_eq!(fit_cuts_budget(size, flux), size);
+        }
+        // 3840×2160 at full resolution: 480×270 tiles would need 9.6 GiB.
+        let (w, h) = fit_cuts_budget((3840, 2160), (3840, 2160));
+        assert!(cuts_layout((w, h), (3840, 2160)).bytes() <= CUTS_BUDGET_BYTES, "{w}x{h}");
+        assert!(cuts_layout((w, h), (3840, 2160)).bytes() > CUTS_BUDGET_BYTES * 9 / 10, "{w}x{h} is far smaller");
+        assert!((w as f32 / h as f32 - 16.0 / 9.0).abs() < 0.05, "{w}x{h} keeps the shape");
     }
 }

@@ -16,6 +16,8 @@ pub mod names {
     pub const STATS: &str = "gi.stats";
     /// Indirect irradiance E at the indirect resolution (W/m², Rgba32Float).
     pub const IRRADIANCE: &str = "gi.irradiance";
+    /// The irradiance blended over frames (a history pair: this frame's and last).
+    pub const IRRADIANCE_HISTORY: &str = "gi.irradiance_history";
     /// Indirect radiance L_i = ρ/π · E at full resolution (Rgba16Float).
     pub const INDIRECT: &str = "gi.indirect";
     /// The frame with the reflection lights drawn as dots (Rgba8UnormSrgb).
@@ -93,17 +95,6 @@ engine::gpu_struct! {
 }
 
 engine::gpu_struct! {
-    /// The band of tile rows one cuts-and-sum dispatch pair covers (gi_common.wgsl).
-    #[repr(C)]
-    #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
-    pub struct Band {
-        pub first_row: u32,
-        pub rows: u32,
-        pub pad: [u32; 2],
-    }
-}
-
-engine::gpu_struct! {
     /// Per pyramid level: offset into the node buffer, width, height (gi_common.wgsl).
     #[repr(C)]
     #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
@@ -136,16 +127,28 @@ engine::gpu_struct! {
     }
 }
 
+engine::gpu_struct! {
+    /// The temporal pass's parameters (temporal.wgsl).
+    #[repr(C)]
+    #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+    pub struct TemporalParams {
+        /// Last frame's view-projection, column-major.
+        pub previous_view_proj: [[f32; 4]; 4],
+        /// This frame's weight, 1 with history, the history's slack.
+        pub blend: [f32; 4],
+    }
+}
+
 /// The twins of the structs in the GI's shaders (shaders/gi/*.wgsl).
 pub fn twins() -> Vec<Layout> {
     vec![
         GiParams::layout(),
         ReflectionLight::layout(),
         GatherStats::layout(),
-        Band::layout(),
         Levels::layout(),
         SenderRange::layout(),
         Probe::layout(),
+        TemporalParams::layout(),
     ]
 }
 
@@ -166,7 +169,7 @@ pub const GPU_ONLY: &[(&str, &str)] = &[
 pub const NODE_SIZE: u64 = 48;
 /// The gather's counters (`Stats` in cuts.wgsl).
 pub const GATHER_STATS_SIZE: u64 = std::mem::size_of::<GatherStats>() as u64;
-/// Bytes of a band's retry list's header, before its `tiles` (`RetryList` in cuts.wgsl).
+/// Bytes of the retry list's header, before its `tiles` (`RetryList` in cuts.wgsl).
 pub const RETRY_HEADER: u64 = 16;
 /// Capacity of the centre tile's light list.
 pub const CENTRE_LIGHTS: u64 = 8192;

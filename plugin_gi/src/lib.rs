@@ -63,6 +63,9 @@ impl Plugin for GiPlugin {
         let probe = passes::ViewModelIrradiancePass::new(device, globals, handle.clone(), gi, irradiance);
         ctx.add_pass(Stage::Indirect, probe);
         ctx.add_pass(Stage::Indirect, passes::BouncePass::new(device, globals, handle.clone(), core, gi));
+        // The total of every bounce, blended over frames.
+        ctx.add_pass(Stage::Indirect, passes::TemporalPass::new(device, globals, handle.clone(), core, gi))
+            .after("gi_bounces");
         ctx.add_pass(Stage::Indirect, passes::ReferencePass::new(device, globals, handle, core, gi));
         ctx.add_pass(Stage::Composite, passes::IndirectCompositePass::new(device, globals, shared.clone()));
         ctx.add_pass(Stage::Composite, passes::IndirectViewPass::new(device, globals, shared));

@@ -1,6 +1,6 @@
 //! The graph resources the GI passes exchange, made once when the plugin is built.
 
-use engine::graph::{Buffer, Handle, Image};
+use engine::graph::{Buffer, Handle, History, Image};
 use engine::plugin::PluginContext;
 
 use crate::gpu_types::names;
@@ -16,9 +16,11 @@ pub(crate) struct GiResources {
     /// frames (re-made when the flux G-buffer changes size).
     pub levels: Handle<Buffer>,
     pub nodes: Handle<Buffer>,
-    /// One band's cuts, kept across frames, shared by every bounce's gather.
+    /// Every tile's cut, kept across frames, shared by every bounce's gather.
     pub cuts: Handle<Buffer>,
     pub irradiance: Handle<Image>,
+    /// The irradiance blended over frames (`gi_temporal`), which the composite upsamples.
+    pub history: History<Image>,
     pub stats: Handle<Buffer>,
     pub lights: Handle<Buffer>,
     pub indirect: Handle<Image>,
@@ -63,6 +65,7 @@ impl GiResources {
             nodes: ctx.persistent_buffer("gi.nodes"),
             cuts: ctx.persistent_buffer("gi.cuts"),
             irradiance: ctx.image(names::IRRADIANCE),
+            history: ctx.history_image(names::IRRADIANCE_HISTORY),
             stats: ctx.buffer(names::STATS),
             lights: ctx.buffer(names::LIGHTS),
             indirect: ctx.image(names::INDIRECT),

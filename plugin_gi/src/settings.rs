@@ -38,6 +38,10 @@ declare::settings! {
         /// Fewer only when the view has fewer: the light's variation across a room needs about
         /// this many. Lower is faster and blurrier; the CPU preset uses 45.
         min_rows: u32 = 90, 16..=360, "fewest rows of the indirect target, whatever the scale";
+        /// Each frame's indirect light is this much last frames' (reprojected to the same
+        /// world points) and the rest its own gather: the gather's lights sit in screen space,
+        /// so its small errors move with the view, and averaging holds them still. 0: none.
+        history: f32 = 0.8, 0.0..=0.95, "share of the indirect light kept from earlier frames (0: none)";
     }
 }
 
@@ -160,6 +164,7 @@ mod tests {
             "resolution_scale",
             "interleave",
             "min_rows",
+            "history",
         ];
         assert_eq!(names, order);
         assert_eq!(GiSettings::FIELDS.iter().filter(|f| f.integer).count(), 3, "bounces, interleave, min_rows");

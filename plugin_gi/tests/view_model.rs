@@ -45,7 +45,9 @@ fn a_view_model_adds_no_flux_and_changes_no_indirect_light() {
 
     // Each view's whole frame (every pass, the view-model pass included), its flux, then the
     // indirect light alone.
+    // Each starts from no history, so the frames before it cannot tell the views apart.
     let mut frame = |view: &ViewState| {
+        r.renderer.reset_history();
         let final_image = render_linear(&gpu, &mut r, view, "final", SIZE);
         let flux = readback::gbuffer_flux(&gpu, &r.renderer).unwrap();
         (final_image, flux, render_linear(&gpu, &mut r, view, "indirect", SIZE))

@@ -13,7 +13,7 @@
 // follows from its place in the tree (see `walk`). The few tiles whose cut fills up are listed
 // and walked again by a second, indirect dispatch (`retry_full_tiles`), packed side by side.
 //
-// Per tile of the band, `cuts` holds the counts (evaluated, facing away), the tile's centre
+// Per tile, `cuts` holds the counts (evaluated, facing away), the tile's centre
 // (the stored positions are relative to it), then the evaluated lights, one vec4 each (see
 // gi_common.wgsl). The tile at the centre of the view also writes its whole cut, those facing
 // away included, to `centre_lights` for the `lights` view.
@@ -41,7 +41,6 @@ struct Stats {
 @group(1) @binding(5) var<storage, read_write> cuts: array<vec4u>;
 @group(1) @binding(6) var<storage, read_write> stats: Stats;
 @group(1) @binding(7) var<storage, read_write> centre_lights: array<ReflectionLight>;
-@group(1) @binding(8) var<uniform> band: Band;
 
 // A tile's bounds: centre and radius of a sphere holding its receivers, their mean normal and
 // the largest distance from the mean plane; `count` = 0 when the tile has none.
@@ -246,14 +245,14 @@ fn fewest(classes: vec4u) -> u32 {
     return c;
 }
 
-// Where tile `slot` of this band lies, and whether it is in the band at all.
-fn band_tile(slot: u32) -> vec3u {
+// Where tile `slot` lies, and whether there is such a tile.
+fn slot_tile(slot: u32) -> vec3u {
     let tiles = (params.indirect_size + CUT_TILE - 1u) / CUT_TILE;
-    let tile = vec2u(slot % tiles.x, band.first_row + slot / tiles.x);
-    return vec3u(tile, u32(slot < tiles.x * band.rows && tile.y < tiles.y));
+    let tile = vec2u(slot % tiles.x, slot / tiles.x);
+    return vec3u(tile, u32(tile.y < tiles.y));
 }
 
-// vec4s per tile in this band's cuts.
+// vec4s per tile in `cuts`.
 fn tile_stride() -> u32 {
     let top_level = table.levels[PYRAMID_LEVELS - 1u];
     return cut_stride(top_level.y * top_level.z);
@@ -304,10 +303,10 @@ struct RetryList {
     pad0: u32,
     pad1: u32,
     pad2: u32,
-    // Per full tile: its slot in the band, and the split ratio its next walk takes (f32 bits).
+    // Per full tile: its slot, and the split ratio its next walk takes (f32 bits).
     tiles: array<vec2u>,
 };
-@group(1) @binding(9) var<storage, read_write> retry: RetryList;
+@group(1) @binding(8) var<storage, read_write> retry: RetryList;
 
 // The arguments of the indirect dispatch of `retry_full_tiles`: a workgroup per CUTS_GROUP
 // full tiles. Only `main` binds it (the retry dispatch reads it as its arguments).
@@ -330,7 +329,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
         retry_dispatch.z = 1u;
     }
     let slot = id.x;
-    let place = band_tile(slot);
+    let place = slot_tile(slot);
     if place.z == 0u {
         return;
     }
@@ -366,7 +365,7 @@ fn retry_full_tiles(@builtin(global_invocation_id) id: vec3u) {
     }
     let entry = retry.tiles[id.x];
     let slot = entry.x;
-    let tile = band_tile(slot).xy;
+    let tile = slot_tile(slot).xy;
     let base = slot * tile_stride();
     let b = tile_bounds(tile * CUT_TILE);
     let top = PYRAMID_LEVELS - 1u;

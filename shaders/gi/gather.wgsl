@@ -20,7 +20,6 @@
 // bounce's irradiance alone, for the next bounce's flux.
 @group(1) @binding(6) var accumulate: texture_2d<f32>;
 @group(1) @binding(7) var bounce_out: texture_storage_2d<rgba32float, write>;
-@group(1) @binding(8) var<uniform> band: Band;
 
 // The tile's receivers: position, and the normal packed in w (NO_NORMAL where there is no
 // surface), so a neighbour is one load.
@@ -83,7 +82,7 @@ fn tent(k: u32) -> f32 {
 @compute @workgroup_size(8, 8)
 fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_index) li: u32,
     @builtin(workgroup_id) group: vec3u) {
-    let q = vec2u(group.x, band.first_row + group.y) * CUT_TILE + local.xy;
+    let q = group.xy * CUT_TILE + local.xy;
     let in_view = all(q < params.indirect_size);
     var x = vec3f(0.0);
     var n = vec4f(0.0);

@@ -161,14 +161,6 @@ fn unpack_rgb9e5(v: u32) -> vec3f {
     return q * exp2(f32(i32(v >> 27u)) - 24.0);
 }
 
-// The band of tile rows one cuts-and-sum dispatch pair covers (a large target is gathered a
-// band at a time, so the cuts buffer stays bounded; see gather.rs).
-struct Band {
-    first_row: u32,
-    rows: u32,
-    pad0: u32,
-    pad1: u32,
-};
 
 // vec4s per tile in the cuts buffer: the counts (slots to sum, facing away), the tile's
 // centre, then one a light, with room for twice the most lights (the interleaved classes are

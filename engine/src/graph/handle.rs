@@ -100,6 +100,12 @@ impl<K> History<K> {
     }
 }
 
+impl<K> std::fmt::Debug for History<K> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "History(current {:?}, previous {:?})", self.current, self.previous)
+    }
+}
+
 impl<K> Clone for History<K> {
     fn clone(&self) -> Self {
         *self

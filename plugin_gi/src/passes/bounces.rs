@@ -9,7 +9,7 @@ use engine::wgpu;
 use super::flux::flux_texture;
 use super::gather::{irradiance_texture, lights_desc, stats_desc};
 use super::params::{flux_size, indirect_size, params, params_desc};
-use crate::gather::{bands, Bands, Gather, GatherTargets};
+use crate::gather::{cuts_layout, CutsLayout, Gather, GatherTargets};
 use crate::pyramid::{nodes_desc, PyramidBindings, PyramidPipelines};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
@@ -36,7 +36,7 @@ pub struct BounceIo {
     lights: Write<Buffer>,
     cuts: Write<Buffer>,
     irradiance: Write<Image>,
-    bands: Bands,
+    layout: CutsLayout,
     flux_size: (u32, u32),
     indirect_size: (u32, u32),
 }
@@ -81,7 +81,7 @@ impl RenderPass for BouncePass {
             lights: d.create(b.lights, lights_desc()),
             cuts: d.write(self.gi.cuts),
             irradiance: d.write(self.gi.irradiance),
-            bands: bands(low, flux),
+            layout: cuts_layout(low, flux),
             flux_size: flux,
             indirect_size: low,
         })
@@ -127,7 +127,7 @@ impl RenderPass for BouncePass {
                 stats: ctx.buffer(&io.stats),
                 lights: ctx.buffer(&io.lights),
             };
-            dispatches += self.gather.record(device, ctx.encoder, ctx.frame.globals, io.bands, &targets);
+            dispatches += self.gather.record(device, ctx.encoder, ctx.frame.globals, io.layout, &targets);
         }
         ctx.count_dispatches(dispatches);
     }

@@ -5,7 +5,7 @@ use engine::passes::CoreResources;
 use engine::wgpu;
 
 use super::params::{fixed, flux_size, indirect_size};
-use crate::gather::{bands, cuts_desc, Bands, Gather, GatherTargets};
+use crate::gather::{cuts_desc, cuts_layout, CutsLayout, Gather, GatherTargets};
 use crate::gpu_types::{CENTRE_LIGHTS, GATHER_STATS_SIZE};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
@@ -29,7 +29,7 @@ pub struct GatherIo {
     irradiance: Write<Image>,
     stats: Write<Buffer>,
     lights: Write<Buffer>,
-    bands: Bands,
+    layout: CutsLayout,
 }
 
 /// The irradiance format: f32 storage, summed by the gather itself (no blending).
@@ -96,7 +96,7 @@ impl RenderPass for GatherPass {
     fn declare(&self, d: &mut PassDecl<'_>) -> GatherIo {
         let settings = self.handle.settings();
         let size = indirect_size(&settings, d.size());
-        let bands = bands(size, flux_size(&settings, d.size(), d.view().headlamp.attached));
+        let layout = cuts_layout(size, flux_size(&settings, d.size(), d.view().headlamp.attached));
         let gi = &self.gi;
         GatherIo {
             params: d.read(gi.params),
@@ -104,11 +104,11 @@ impl RenderPass for GatherPass {
             nodes: d.read(gi.nodes),
             normal: d.read(self.core.gbuffer.normal),
             position: d.read(self.core.gbuffer.position),
-            cuts: d.create(gi.cuts, cuts_desc(&bands)),
+            cuts: d.create(gi.cuts, cuts_desc(&layout)),
             irradiance: d.create(gi.irradiance, irradiance_texture(size)),
             stats: d.create(gi.stats, stats_desc()),
             lights: d.create(gi.lights, lights_desc()),
-            bands,
+            layout,
         }
     }
 
@@ -126,7 +126,7 @@ impl RenderPass for GatherPass {
             stats: ctx.buffer(&io.stats),
             lights: ctx.buffer(&io.lights),
         };
-        let dispatches = self.gather.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, io.bands, &targets);
+        let dispatches = self.gather.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, io.layout, &targets);
         ctx.count_dispatches(dispatches);
     }
 }

@@ -74,7 +74,7 @@ impl Upsample {
         let g = &self.core.gbuffer;
         Some(UpsampleInputs {
             params: d.read(self.gi.params),
-            textures: [self.gi.irradiance, g.albedo, g.normal, g.position].map(|h| d.read(h)),
+            textures: [self.gi.history.current(), g.albedo, g.normal, g.position].map(|h| d.read(h)),
         })
     }
 

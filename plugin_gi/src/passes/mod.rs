@@ -8,6 +8,7 @@ mod indirect;
 mod lights_view;
 mod params;
 mod reference;
+mod temporal;
 mod view_model_irradiance;
 
 pub use bounces::BouncePass;
@@ -17,6 +18,7 @@ pub use indirect::{IndirectCompositePass, IndirectViewPass};
 pub use lights_view::LightsViewPass;
 pub use params::GiParamsPass;
 pub use reference::ReferencePass;
+pub use temporal::TemporalPass;
 pub use view_model_irradiance::ViewModelIrradiancePass;
 
 /// Every WGSL file of the plugin, for validation tests.
@@ -27,5 +29,6 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("gi/indirect.wgsl", indirect::SHADER),
     ("gi/lights_view.wgsl", lights_view::SHADER),
     ("gi/reference.wgsl", reference::SHADER),
+    ("gi/temporal.wgsl", temporal::SHADER),
     ("gi/view_model_irradiance.wgsl", view_model_irradiance::SHADER),
 ];

@@ -56,9 +56,12 @@ pub(crate) fn flux_size(settings: &GiSettings, size: (u32, u32), attached: bool)
     (w.max(1).div_ceil(1 << k), h.max(1).div_ceil(1 << k))
 }
 
-/// Size of the irradiance target.
+/// Size of the irradiance target: the settings' rule, made smaller only where its cuts would
+/// outgrow their budget (far above play sizes), so the gather is always three calls.
 pub(crate) fn indirect_size(settings: &GiSettings, size: (u32, u32)) -> (u32, u32) {
-    settings.indirect_size().resolve(size)
+    // A cut has room for the pyramid's whole top level, which only the attached lamp's flux
+    // G-buffer can make larger than CUT_MAX (a detached lamp's has 16×16 nodes).
+    crate::gather::fit_cuts_budget(settings.indirect_size().resolve(size), flux_size(settings, size, true))
 }
 
 /// A fixed-size rule for a size derived above.
