@@ -56,7 +56,9 @@ fn reprojected(x: vec3f, n: vec3f, full: vec2f, low: vec2i) -> vec4f {
     base -= vec2i((pixel < sample_centre(base, fi, low)) & (base > vec2i(0)));
     base += vec2i((pixel > sample_centre(base + 1, fi, low)) & (base + 2 < low));
     let c0 = sample_centre(base, fi, low);
-    let f = (pixel - c0) / max(sample_centre(base + 1, fi, low) - c0, vec2f(1e-6));
+    var f = (pixel - c0) / max(sample_centre(base + 1, fi, low) - c0, vec2f(1e-6));
+    // On a sample to rounding (a still view): that sample alone, so nothing drifts.
+    f = select(f, round(f), abs(f - round(f)) < vec2f(1e-3));
     if any(f < vec2f(-0.5)) || any(f > vec2f(1.5)) {
         return vec4f(0.0);
     }
