@@ -18,6 +18,7 @@
 //! Everything is CPU code (rayon); the receivers come from the renderer's views.
 
 mod lamp;
+mod occlusion;
 mod texture;
 mod transport;
 mod world;

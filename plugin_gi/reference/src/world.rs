@@ -9,6 +9,7 @@ use parry3d::shape::TriMesh;
 use rayon::prelude::*;
 
 use crate::lamp::Lamp;
+use crate::occlusion::OcclusionMap;
 use crate::texture::{slot_uv, LinearTexture};
 use crate::transport::LitPatches;
 
@@ -160,6 +161,11 @@ impl World {
     /// facing away from it are skipped whole; of the others every patch with light on it and a
     /// clear line to the lamp. In a fixed order (triangles, then rows), whatever the threads.
     pub fn lit_patches(&self, lamp: &Lamp, max_edge: f32) -> Vec<LitPatch> {
+        self.lit_patches_with(lamp, max_edge, true)
+    }
+
+    /// [`World::lit_patches`], with or without the occlusion map that spares rays.
+    fn lit_patches_with(&self, lamp: &Lamp, max_edge: f32, occlusion_map: bool) -> Vec<LitPatch> {
         assert!(max_edge > 0.0, "patches have a size");
         if !lamp.is_on() {
             return Vec::new();
@@ -175,6 +181,12 @@ impl World {
                 (0..n).step_by(ROWS_PER_TASK as usize).map(move |row| (i as u32, n, row))
             })
             .collect();
+        // Triangles a shadow ray stops at: double-sided ones, and single-sided ones facing the lamp.
+        let occluders = self.triangles.iter().filter(|t| {
+            let [a, b, c] = t.corners;
+            t.double_sided || (b - a).cross(c - a).dot(lamp.position - a) > 0.0
+        });
+        let shadows = OcclusionMap::new(lamp.view_proj, occluders.filter(|_| occlusion_map).map(|t| t.corners));
         let lit: Vec<Vec<LitPatch>> = tasks
             .par_iter()
             .map(|&(i, n, first)| {
@@ -183,7 +195,7 @@ impl World {
                 let Some(frame) = TriangleFrame::of(t, i, n) else { return out };
                 for row in first..(first + ROWS_PER_TASK).min(n) {
                     frame.row(row, |patch, u, v| {
-                        if let Some(p) = self.light(t, patch, u, v, lamp) {
+                        if let Some(p) = self.light(t, patch, u, v, lamp, &shadows) {
                             out.push(p);
                         }
                     });
@@ -218,7 +230,15 @@ impl World {
     }
 
     /// The light `patch` (at barycentric `u`, `v` of `t`) reflects, if any.
-    fn light(&self, t: &Triangle, patch: Patch, u: f32, v: f32, lamp: &Lamp) -> Option<LitPatch> {
+    fn light(
+        &self,
+        t: &Triangle,
+        patch: Patch,
+        u: f32,
+        v: f32,
+        lamp: &Lamp,
+        shadows: &OcclusionMap,
+    ) -> Option<LitPatch> {
         let to_lamp = lamp.position - patch.centre;
         let side = patch.normal.dot(to_lamp);
         let normal = if side >= 0.0 { patch.normal } else { -patch.normal };
@@ -227,6 +247,9 @@ impl World {
         }
         let intensity = lamp.intensity_towards(patch.centre);
         if intensity.max_element() <= 0.0 {
+            return None;
+        }
+        if shadows.hides(patch.centre) {
             return None;
         }
         let rho = self.albedo(t, u, v)?;
@@ -334,5 +357,23 @@ impl TriangleFrame {
                 );
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use engine::start_view::{initial_view, ViewOverrides};
+
+    #[test]
+    fn the_occlusion_map_only_spares_rays_it_never_changes_what_is_lit() {
+        let cellar = concat!(env!("CARGO_MANIFEST_DIR"), "/../../levels/cellar");
+        let level = engine::scene::load_level(std::path::Path::new(cellar)).unwrap();
+        let view = initial_view(&level, &ViewOverrides::default());
+        let world = World::new(&level.scene);
+        let lamp = Lamp::new(&view.headlamp, &view.camera, 4.0 / 3.0);
+        let (with, without) = (world.lit_patches_with(&lamp, 0.1, true), world.lit_patches_with(&lamp, 0.1, false));
+        assert!(with.len() > 10_000, "{} lit", with.len());
+        assert!(with == without, "{} lit patches with the map, {} without", with.len(), without.len());
     }
 }
