@@ -89,7 +89,7 @@ pub fn block_mask(width: u32, height: u32, block: u32, every: u32) -> Vec<bool> 
     let mut mask = vec![false; (width * height) as usize];
     for y in 0..bh * block {
         for x in 0..bw * block {
-            mask[(y * width + x) as usize] = (x / block) % every == 0 && (y / block) % every == 0;
+            mask[(y * width + x) as usize] = (x / block).is_multiple_of(every) && (y / block).is_multiple_of(every);
         }
     }
     mask
@@ -172,17 +172,17 @@ mod tests {
         assert_eq!(block_error_masked(&test, &reference, &mask), 0.0);
         assert!((block_error(&test, &reference) - 1.0 / 3f64.sqrt()).abs() < 1e-12);
         assert!(
-            (block_error_masked(&test, &reference, &vec![true; 24 * 8]) - block_error(&test, &reference)).abs() < 1e-15
+            (block_error_masked(&test, &reference, &[true; 24 * 8]) - block_error(&test, &reference)).abs() < 1e-15
         );
         // A block partly outside the mask does not count; none at all gives NaN.
         let mut partial = vec![true; 24 * 8];
         partial[0] = false;
         assert_eq!(block_means_masked(&test, 8, &partial), vec![2.0, 2.0, 2.0, 1.0, 1.0, 1.0]);
-        assert!(block_error_masked(&test, &reference, &vec![false; 24 * 8]).is_nan());
+        assert!(block_error_masked(&test, &reference, &[false; 24 * 8]).is_nan());
         // 4×4 means of every other block across and down: (0, 0), (2, 0), (4, 0) of a 24×8 frame.
         let mask = block_mask(24, 8, 4, 2);
         assert_eq!(block_means_masked(&test, 4, &mask), vec![1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 1.0, 1.0, 1.0]);
-        assert_eq!(block_means_masked(&test, 4, &vec![true; 24 * 8]), block_means(&test, 4));
+        assert_eq!(block_means_masked(&test, 4, &[true; 24 * 8]), block_means(&test, 4));
         // Blocks that do not fit whole are never in it.
         assert!(!block_mask(10, 10, 4, 1)[(9 * 10 + 9) as usize] && block_mask(10, 10, 4, 1)[0]);
     }
