@@ -68,7 +68,9 @@ pub struct RenderArgs {
     /// Image size in pixels.
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// What to show: final, direct, albedo, normal, depth.
+    /// What to show: final, direct, albedo, normal, depth; with the GI also indirect, flux,
+    /// lights, reference (the exact one bounce from patches fixed in the world, computed on the
+    /// CPU) and reference_screen (the GPU's, every texel of the lamp's view a sender).
     #[arg(long, default_value = "final")]
     pub view: String,
     /// Camera eye and target: EX,EY,EZ:TX,TY,TZ (metres).
@@ -86,12 +88,19 @@ pub struct RenderArgs {
     /// A GI setting, e.g. gi.split_ratio=0.3 (repeatable; see docs/gi.md for the names).
     #[arg(long = "set", value_name = "gi.NAME=VALUE", value_parser = parse_setting)]
     pub settings: Vec<(String, String)>,
+    /// With --view reference: the longest edge of its patches, in metres [default: 0.02].
+    #[arg(long, value_name = "METRES", value_parser = parse_patch_size)]
+    pub patch_size: Option<f32>,
 }
 
 impl RenderArgs {
     /// The GI settings these flags ask for, starting from the defaults.
     pub fn gi_settings(&self) -> Result<plugin_gi::GiSettings, String> {
         gi_settings(&self.settings, self.gi)
+    }
+
+    pub fn patch_size(&self) -> f32 {
+        self.patch_size.unwrap_or(gi_reference::DEFAULT_MAX_EDGE)
     }
 }
 
@@ -100,7 +109,8 @@ pub struct BenchArgs {
     /// A level folder or a bare .gltf/.glb/.obj file.
     #[arg(long)]
     pub level: PathBuf,
-    /// Frame size in pixels [default: 640x360; 160x120 with --pan, whose reference is O(pixels²)].
+    /// Frame size in pixels [default: 640x360; 160x120 with --pan, whose reference costs
+    /// O(pixels × lit patches)].
     #[arg(long, value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
     /// Timed frames along the camera path [default: 60; 16 with --pan].
@@ -128,7 +138,7 @@ pub struct BenchArgs {
     #[arg(long, conflicts_with = "pan")]
     pub compare: bool,
     /// Pan slowly from a fixed view and print the GI's flicker: how much its error against the
-    /// exact reference moves from one frame to the next.
+    /// exact reference (its senders fixed in the world) moves from one frame to the next.
     #[arg(long)]
     pub pan: bool,
     /// With --pan: camera eye and target, EX,EY,EZ:TX,TY,TZ (metres) [default: the level's start].
@@ -141,14 +151,22 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 0.5, value_parser = parse_pan_deg, requires = "pan")]
     pub pan_deg: f32,
     /// With --pan: write each frame's linear indirect light and reference as
-    /// DIR/indirect_NNN.exr and DIR/reference_NNN.exr (the folder is created).
+    /// DIR/indirect_NNN.exr and DIR/reference_NNN.exr (the folder is created), and with
+    /// --converge DIR/reference_half_NNN.exr.
     #[arg(long, value_name = "DIR", requires = "pan")]
     pub out_dir: Option<PathBuf>,
-    /// With --pan: also compare against the reference lit by K² times as many senders (K odd,
-    /// 3 to 7; its cost is K² times the reference's): the same receivers, whose own reference
-    /// at the frame's size then shows how far its sampling moves it from frame to frame.
-    #[arg(long, value_name = "K", value_parser = parse_reference_senders, requires = "pan")]
-    pub reference_senders: Option<u32>,
+    /// The world reference's patches: their longest edge in metres [default: 0.02].
+    #[arg(long, value_name = "METRES", value_parser = parse_patch_size, conflicts_with = "compare")]
+    pub patch_size: Option<f32>,
+    /// With --pan: evaluate the reference on every K-th flicker block across and down (the
+    /// same blocks every frame; every figure is taken over them) [default: about 25,000
+    /// pixels' worth, 1 at 160x120].
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=64), requires = "pan")]
+    pub reference_every: Option<u32>,
+    /// With --pan: also evaluate the reference with patches of half the size (four times the
+    /// cost) and print how far the reference is from it: its error and its own flicker.
+    #[arg(long, requires = "pan")]
+    pub converge: bool,
 }
 
 impl BenchArgs {
@@ -158,6 +176,10 @@ impl BenchArgs {
 
     pub fn frames(&self) -> u32 {
         self.frames.unwrap_or(if self.pan { 16 } else { 60 })
+    }
+
+    pub fn patch_size(&self) -> f32 {
+        self.patch_size.unwrap_or(gi_reference::DEFAULT_MAX_EDGE)
     }
 }
 
@@ -316,10 +338,11 @@ pub fn parse_pan_deg(s: &str) -> Result<f32, String> {
     }
 }
 
-pub fn parse_reference_senders(s: &str) -> Result<u32, String> {
-    match s.trim().parse::<u32>() {
-        Ok(k) if (3..=7).contains(&k) && k % 2 == 1 => Ok(k),
-        _ => Err(format!("'{s}': the senders' factor must be 3, 5 or 7 (odd, so a block's centre pixel is a pixel)")),
+/// A patch edge in metres: from 2 mm (a frame's worth of patches grows as 1/edge²) to 1 m.
+pub fn parse_patch_size(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if (0.002..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!("'{s}': the patch size must be a number of metres from 0.002 to 1")),
     }
 }
 
@@ -359,10 +382,10 @@ mod tests {
     }
 
     #[test]
-    fn reference_senders_are_odd_factors_from_3_to_7() {
-        assert_eq!((parse_reference_senders("3"), parse_reference_senders("7")), (Ok(3), Ok(7)));
-        for bad in ["1", "2", "4", "9", "-3", "x"] {
-            assert!(parse_reference_senders(bad).unwrap_err().contains("3, 5 or 7"), "{bad}");
+    fn patch_sizes_are_metres_from_2_mm_to_1_m() {
+        assert_eq!((parse_patch_size("0.02"), parse_patch_size("1")), (Ok(0.02), Ok(1.0)));
+        for bad in ["0", "0.001", "2", "-0.02", "x", "nan"] {
+            assert!(parse_patch_size(bad).unwrap_err().contains("0.002 to 1"), "{bad}");
         }
     }
 }

@@ -24,6 +24,7 @@ pub mod sim;
 pub mod sound;
 pub mod thumbnail;
 pub mod view;
+pub mod world_reference;
 
 use std::path::PathBuf;
 

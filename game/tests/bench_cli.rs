@@ -76,8 +76,8 @@ fn bench_with_a_target_frame_rate_reports_the_scales_dynamic_resolution_chose() 
 }
 
 #[test]
-fn bench_pan_compares_against_the_reference_with_finer_senders_too() {
-    let dir = scratch("pan_finer");
+fn bench_pan_measures_against_the_world_reference_and_its_convergence() {
+    let dir = scratch("pan_converge");
     let json = dir.join("out.json");
     let level = cellar();
     let out = headlamp(&[
@@ -86,11 +86,14 @@ fn bench_pan_compares_against_the_reference_with_finer_senders_too() {
         level.as_str(),
         "--pan",
         "--size",
-        "32x24",
+        "320x96",
         "--frames",
         "3",
-        "--reference-senders",
-        "3",
+        "--patch-size",
+        "0.08",
+        "--reference-every",
+        "2",
+        "--converge",
         "--out-dir",
         dir.to_str().unwrap(),
         "--json",
@@ -98,19 +101,44 @@ fn bench_pan_compares_against_the_reference_with_finer_senders_too() {
     ]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "bench --pan failed: {}\n{stdout}", String::from_utf8_lossy(&out.stderr));
-    assert!(stdout.contains("against the reference with 3x3 as many senders"), "{stdout}");
-    assert!(stdout.contains("the 32x24 reference's own flicker against it"), "{stdout}");
-    let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let finer = &report["finer"];
-    assert_eq!(finer["senders"], 3);
-    for key in ["flicker", "reference_flicker"] {
-        let v = finer[key].as_f64().unwrap_or_else(|| panic!("finer.{key} is not a number: {finer}"));
-        assert!(v.is_finite() && v >= 0.0, "finer.{key} = {v}");
+    println!("{stdout}");
+    for needle in [
+        "reference: world-fixed patches of at most 8 cm, on every 2nd 8x8 flicker block across and down",
+        "| figure (8x8-block means) |",
+        "the reference vs its 4 cm patches (8x8 blocks)",
+        "the reference's own flicker against its 4 cm patches",
+    ] {
+        assert!(stdout.contains(needle), "the table lacks '{needle}':\n{stdout}");
     }
-    assert_eq!(finer["error_per_frame"].as_array().map(Vec::len), Some(3));
-    // The finer reference's frames are written at the pan's size, beside the others.
-    let frame = image::open(dir.join("reference_finer_002.exr")).expect("the finer reference's last frame");
-    assert_eq!((frame.width(), frame.height()), (32, 24));
+    let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(report["flicker_block"], 8, "1/40 of 320 pixels");
+    let reference = &report["reference"];
+    assert_eq!(reference["every"], 2);
+    assert_eq!(reference["pixels"], 20 * 6 * 64, "every other block of 40x12, across and down");
+    for key in ["receivers_per_frame", "lit_patches_per_frame", "patch_seconds_per_frame", "sum_seconds_per_frame"] {
+        let per_frame = reference[key].as_array().unwrap_or_else(|| panic!("reference.{key}: {reference}"));
+        assert_eq!(per_frame.len(), 3, "{key}");
+        assert!(per_frame.iter().all(|v| v.as_f64().is_some_and(|v| v > 0.0)), "{key}: {per_frame:?}");
+    }
+    let converge = &report["converge"];
+    assert_eq!(converge["patch_size_m"], 0.04);
+    for key in ["flicker", "reference_flicker"] {
+        let v = converge[key].as_f64().unwrap_or_else(|| panic!("converge.{key} is not a number: {converge}"));
+        assert!(v.is_finite() && v >= 0.0, "converge.{key} = {v}");
+    }
+    let lit = |r: &serde_json::Value| r["lit_patches_per_frame"][0].as_f64().unwrap();
+    assert!(lit(converge) > 3.0 * lit(reference), "half the size, about four times the patches");
+    for errors in [&report["error_per_frame"], &converge["error_per_frame"]] {
+        let errors = errors.as_array().unwrap();
+        assert_eq!(errors.len(), 3);
+        assert!(errors.iter().all(|e| e.as_f64().is_some_and(|e| (0.0..1.0).contains(&e))), "{errors:?}");
+    }
+    // The frames are written at the pan's size, black where the reference was not evaluated.
+    let frame =
+        image::open(dir.join("reference_half_002.exr")).expect("the finer reference's last frame").into_rgb32f();
+    assert_eq!((frame.width(), frame.height()), (320, 96));
+    assert!(frame.enumerate_pixels().all(|(x, y, p)| ((x / 8) % 2 == 0 && (y / 8) % 2 == 0) || p.0 == [0.0; 3]));
+    assert!(frame.pixels().any(|p| p[0] > 0.0));
 }
 
 #[test]
@@ -119,13 +147,14 @@ fn bench_rejects_bad_input_with_one_line() {
     let missing = dir.join("nope.gltf");
     let bad_json = dir.join("no_such_dir").join("out.json");
     let cellar = cellar();
-    let cases: [(Vec<&str>, &str); 6] = [
+    let cases: [(Vec<&str>, &str); 7] = [
         (vec!["bench", "--level", missing.to_str().unwrap()], "nope.gltf"),
         (vec!["bench", "--level", &cellar, "--frames", "0"], "--frames"),
         (vec!["bench", "--level", &cellar, "--set", "gi.split_ratio=9"], "split_ratio"),
         (vec!["bench", "--level", &cellar, "--json", bad_json.to_str().unwrap()], "--json"),
         (vec!["bench", "--level", &cellar, "--target-fps", "5"], "--target-fps"),
-        (vec!["bench", "--level", &cellar, "--pan", "--reference-senders", "4"], "--reference-senders"),
+        (vec!["bench", "--level", &cellar, "--converge"], "--pan"),
+        (vec!["bench", "--level", &cellar, "--pan", "--patch-size", "0"], "--patch-size"),
     ];
     for (args, needle) in cases {
         let out = headlamp(&args);

@@ -271,12 +271,35 @@ fn indirect_exr_of_an_unseen_obj_cornell_box_matches_the_brute_force_reference()
     let dir = scratch("cornell");
     let obj = write_cornell_obj(&dir);
     let indirect = render_exr(&obj, &dir.join("indirect.exr"), "indirect", &[]);
+    // The world-fixed reference (CPU) and the GPU's over the lamp view's texels: the same bounce.
     let reference = render_exr(&obj, &dir.join("reference.exr"), "reference", &[]);
+    let screen = render_exr(&obj, &dir.join("reference_screen.exr"), "reference_screen", &[]);
     let total: f64 = reference.pixels().map(|p| p[0] as f64).sum();
     assert!(total > 0.0, "the reference must see indirect light");
     let rgba = |img: &image::Rgb32FImage| image::DynamicImage::ImageRgb32F(img.clone()).into_rgba32f();
     let error = plugin_gi::metrics::block_error(&rgba(&indirect), &rgba(&reference));
     assert!(error <= 0.10, "indirect differs from the brute-force reference by {error:.3}");
+    let screen_error = plugin_gi::metrics::block_error(&rgba(&screen), &rgba(&reference));
+    assert!(screen_error <= 0.05, "the two references differ by {screen_error:.3}");
+    // A PNG of it is the tonemapped picture.
+    let png = dir.join("reference.png");
+    let out = headlamp(&[
+        "render",
+        "--level",
+        obj.to_str().unwrap(),
+        "--out",
+        png.to_str().unwrap(),
+        "--size",
+        "48x36",
+        "--view",
+        "reference",
+        "--patch-size",
+        "0.05",
+    ]);
+    assert_ok(&out);
+    let picture = image::open(&png).unwrap().into_rgba8();
+    assert_eq!(picture.dimensions(), (48, 36));
+    assert!(picture.pixels().any(|p| p[0] > 0), "some of it is lit");
 }
 
 #[test]

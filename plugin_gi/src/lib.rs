@@ -74,6 +74,8 @@ impl Plugin for GiPlugin {
         ctx.add_view("indirect", gi.indirect, OutputView::Radiance);
         ctx.add_view("flux", gi.flux_view, OutputView::Color);
         ctx.add_view("lights", gi.lights_view, OutputView::Color);
-        ctx.add_view("reference", gi.reference, OutputView::Radiance);
+        // The GPU reference, every texel of the lamp view a sender; `reference` is the world-fixed
+        // one the game computes on the CPU (the gi-reference crate).
+        ctx.add_view("reference_screen", gi.reference, OutputView::Radiance);
     }
 }

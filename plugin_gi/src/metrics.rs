@@ -5,11 +5,28 @@
 /// the figure about the light's distribution rather than per-pixel noise. 0 is a perfect match;
 /// NaN when the reference is black.
 pub fn block_error(test: &image::Rgba32FImage, reference: &image::Rgba32FImage) -> f64 {
+    block_error_where(test, reference, |_, _| true)
+}
+
+/// [`block_error`] over the 8×8 blocks that lie wholly inside `mask` (one flag a pixel, row by
+/// row): a reference evaluated at some pixels only is compared where it was evaluated. NaN when
+/// no block is.
+pub fn block_error_masked(test: &image::Rgba32FImage, reference: &image::Rgba32FImage, mask: &[bool]) -> f64 {
+    let (w, _) = reference.dimensions();
+    assert_eq!(mask.len(), reference.pixels().len(), "one mask flag a pixel");
+    block_error_where(test, reference, |bx, by| block_inside(mask, w, 8, bx, by))
+}
+
+fn block_error_where(
+    test: &image::Rgba32FImage,
+    reference: &image::Rgba32FImage,
+    counts: impl Fn(u32, u32) -> bool,
+) -> f64 {
     assert_eq!(test.dimensions(), reference.dimensions(), "block_error compares images of one size");
     let (w, h) = reference.dimensions();
     let (mut num, mut den) = (0.0f64, 0.0f64);
     for by in 0..h / 8 {
-        for bx in 0..w / 8 {
+        for bx in (0..w / 8).filter(|&bx| counts(bx, by)) {
             for c in 0..3 {
                 let (mut t, mut r) = (0.0f64, 0.0f64);
                 for y in by * 8..by * 8 + 8 {
@@ -26,14 +43,30 @@ pub fn block_error(test: &image::Rgba32FImage, reference: &image::Rgba32FImage) 
     (num / den).sqrt()
 }
 
+/// Whether block (`bx`, `by`) of `block`×`block` pixels lies wholly inside `mask`.
+fn block_inside(mask: &[bool], width: u32, block: u32, bx: u32, by: u32) -> bool {
+    (by * block..(by + 1) * block).all(|y| (bx * block..(bx + 1) * block).all(|x| mask[(y * width + x) as usize]))
+}
+
 /// Means of `block`×`block` blocks of the three colour channels, row by row (the blocks that fit
 /// whole): the scale at which the flicker figure compares frames.
 pub fn block_means(image: &image::Rgba32FImage, block: u32) -> Vec<f64> {
+    block_means_where(image, block, |_, _| true)
+}
+
+/// [`block_means`] of the blocks that lie wholly inside `mask` (one flag a pixel, row by row).
+pub fn block_means_masked(image: &image::Rgba32FImage, block: u32, mask: &[bool]) -> Vec<f64> {
+    let (w, _) = image.dimensions();
+    assert_eq!(mask.len(), image.pixels().len(), "one mask flag a pixel");
+    block_means_where(image, block, |bx, by| block_inside(mask, w, block, bx, by))
+}
+
+fn block_means_where(image: &image::Rgba32FImage, block: u32, counts: impl Fn(u32, u32) -> bool) -> Vec<f64> {
     let (w, h) = image.dimensions();
     let mut out = Vec::with_capacity(((w / block) * (h / block) * 3) as usize);
     let n = f64::from(block * block);
     for by in 0..h / block {
-        for bx in 0..w / block {
+        for bx in (0..w / block).filter(|&bx| counts(bx, by)) {
             for c in 0..3 {
                 let mut sum = 0.0f64;
                 for y in by * block..(by + 1) * block {
@@ -48,14 +81,29 @@ pub fn block_means(image: &image::Rgba32FImage, block: u32) -> Vec<f64> {
     out
 }
 
+/// The pixels of every `every`-th `block`×`block` block across and down (those that fit
+/// whole), as a mask for the `_masked` figures: the blocks a costly reference is evaluated on.
+pub fn block_mask(width: u32, height: u32, block: u32, every: u32) -> Vec<bool> {
+    assert!(block > 0 && every > 0, "blocks and strides are at least 1");
+    let (bw, bh) = (width / block, height / block);
+    let mut mask = vec![false; (width * height) as usize];
+    for y in 0..bh * block {
+        for x in 0..bw * block {
+            mask[(y * width + x) as usize] = (x / block).is_multiple_of(every) && (y / block).is_multiple_of(every);
+        }
+    }
+    mask
+}
+
 fn norm(v: impl Iterator<Item = f64>) -> f64 {
     v.map(|x| x * x).sum::<f64>().sqrt()
 }
 
 /// How much the GI's error moves from frame to frame of a sequence:
 /// mean over t of ‖e(t+1) − e(t)‖ / mean over t of ‖ref(t)‖, with e(t) = test(t) − ref(t), all
-/// on 4×4-block means. A steady error (a bias that holds still) gives 0; an error that jumps
+/// on block means. A steady error (a bias that holds still) gives 0; an error that jumps
 /// around as the view moves is shimmer. NaN with fewer than two frames or a black reference.
+/// (`bench --pan` takes blocks 1/40 of the frame's width: 4×4 at 160 wide.)
 pub fn flicker(tests: &[Vec<f64>], references: &[Vec<f64>]) -> f64 {
     assert_eq!(tests.len(), references.len(), "flicker compares one test frame per reference frame");
     if tests.len() < 2 {
@@ -107,6 +155,36 @@ mod tests {
         let mut img = flat(8, 4, 1.0);
         img.put_pixel(7, 3, image::Rgba([17.0, 1.0, 1.0, 1.0]));
         assert_eq!(block_means(&img, 4), vec![1.0, 1.0, 1.0, 2.0, 1.0, 1.0]);
+    }
+
+    #[test]
+    fn masked_figures_take_only_the_blocks_wholly_inside_the_mask() {
+        // Three 8×8 blocks across; the middle one differs, and the mask leaves it out.
+        let reference = flat(24, 8, 1.0);
+        let mut test = flat(24, 8, 1.0);
+        for y in 0..8 {
+            for x in 8..16 {
+                test.put_pixel(x, y, image::Rgba([2.0, 2.0, 2.0, 1.0]));
+            }
+        }
+        let mask = block_mask(24, 8, 8, 2);
+        assert_eq!(mask.iter().filter(|&&m| m).count(), 128, "blocks 0 and 2");
+        assert_eq!(block_error_masked(&test, &reference, &mask), 0.0);
+        assert!((block_error(&test, &reference) - 1.0 / 3f64.sqrt()).abs() < 1e-12);
+        assert!(
+            (block_error_masked(&test, &reference, &[true; 24 * 8]) - block_error(&test, &reference)).abs() < 1e-15
+        );
+        // A block partly outside the mask does not count; none at all gives NaN.
+        let mut partial = vec![true; 24 * 8];
+        partial[0] = false;
+        assert_eq!(block_means_masked(&test, 8, &partial), vec![2.0, 2.0, 2.0, 1.0, 1.0, 1.0]);
+        assert!(block_error_masked(&test, &reference, &[false; 24 * 8]).is_nan());
+        // 4×4 means of every other block across and down: (0, 0), (2, 0), (4, 0) of a 24×8 frame.
+        let mask = block_mask(24, 8, 4, 2);
+        assert_eq!(block_means_masked(&test, 4, &mask), vec![1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 1.0, 1.0, 1.0]);
+        assert_eq!(block_means_masked(&test, 4, &[true; 24 * 8]), block_means(&test, 4));
+        // Blocks that do not fit whole are never in it.
+        assert!(!block_mask(10, 10, 4, 1)[(9 * 10 + 9) as usize] && block_mask(10, 10, 4, 1)[0]);
     }
 
     #[test]

@@ -35,7 +35,7 @@ struct Figures {
 
 fn figures(r: &mut GiRender, gpu: &engine::gpu::Gpu, view: &ViewState) -> Figures {
     let indirect = render_linear(gpu, r, view, "indirect", SIZE);
-    let reference = render_linear(gpu, r, view, "reference", SIZE);
+    let reference = render_linear(gpu, r, view, "reference_screen", SIZE);
     let sum = |img: &image::Rgba32FImage| img.pixels().map(|p| (p[0] + p[1] + p[2]) as f64).sum::<f64>();
     assert!(sum(&reference) > 0.0, "the reference must see indirect light");
     Figures { error: block_error(&indirect, &reference), energy: sum(&indirect) / sum(&reference) - 1.0 }

@@ -42,8 +42,8 @@ fn the_flash_adds_to_the_lamp_in_the_indirect_light_and_the_reference() {
     println!("lamp + flash vs one lamp of the summed power: {error:.6}");
     assert!(error < 1e-3, "lamp + flash differs from one lamp of the summed power by {error}");
 
-    let reference = render_linear(&gpu, &mut r, &flashed, "reference", SIZE);
-    let reference_one = render_linear(&gpu, &mut r, &combined, "reference", SIZE);
+    let reference = render_linear(&gpu, &mut r, &flashed, "reference_screen", SIZE);
+    let reference_one = render_linear(&gpu, &mut r, &combined, "reference_screen", SIZE);
     let ref_error = block_error(&reference, &reference_one);
     let gi_error = block_error(&with, &reference);
     println!("reference: flash vs one lamp {ref_error:.6}; plugin vs reference with the flash {gi_error:.4}");
@@ -59,7 +59,7 @@ fn the_flash_alone_lights_indirectly_and_matches_the_reference() {
     view.headlamp.on = false;
     view.camera_flash = [1.0, 3.0, 2.0];
     let indirect = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
-    let reference = render_linear(&gpu, &mut r, &view, "reference", SIZE);
+    let reference = render_linear(&gpu, &mut r, &view, "reference_screen", SIZE);
     let error = block_error(&indirect, &reference);
     println!("flash only: plugin vs reference {error:.4}");
     assert!(total(&reference) > 0.0, "the flash must reflect light");
@@ -129,12 +129,12 @@ fn the_gi_works_at_half_render_scale() {
     let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
     let view = cornell_view(4.0);
     let full = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
-    let full_reference = render_linear(&gpu, &mut r, &view, "reference", SIZE);
+    let full_reference = render_linear(&gpu, &mut r, &view, "reference_screen", SIZE);
     r.renderer.set_render_scale(0.5);
     let half = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
     let flux = r.renderer.graph().texture_by_label(plugin_gi::names::FLUX).unwrap();
     assert_eq!((flux.width(), flux.height()), (SIZE.0 / 2, SIZE.1 / 2));
-    let reference = render_linear(&gpu, &mut r, &view, "reference", SIZE);
+    let reference = render_linear(&gpu, &mut r, &view, "reference_screen", SIZE);
     let (against_reference, against_full) = (block_error(&half, &reference), block_error(&half, &full));
     let reference_moves = block_error(&reference, &full_reference);
     println!(

@@ -21,7 +21,7 @@ fn error_with(settings: GiSettings) -> (f64, f64) {
     let mut r = renderer(&gpu, &cornell_box(), settings);
     let view = cornell_view(4.0);
     let indirect = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
-    let reference = render_linear(&gpu, &mut r, &view, "reference", SIZE);
+    let reference = render_linear(&gpu, &mut r, &view, "reference_screen", SIZE);
     let sum = |img: &image::Rgba32FImage| img.pixels().map(|p| (p[0] + p[1] + p[2]) as f64).sum::<f64>();
     assert!(sum(&reference) > 0.0, "the reference must see indirect light");
     (block_error(&indirect, &reference), sum(&indirect) / sum(&reference) - 1.0)
@@ -259,7 +259,7 @@ fn check_reference_against_the_cpu(
     // The flux G-buffer is the gather's input (the reference computes its own, per texel).
     render_linear(&gpu, &mut r, view, "indirect", size);
     let flux_bytes = read_texture(&gpu, r.renderer.graph().texture_by_label(names::FLUX).unwrap());
-    let reference = render_linear(&gpu, &mut r, view, "reference", size);
+    let reference = render_linear(&gpu, &mut r, view, "reference_screen", size);
     let texels = texels(&gpu, &r, size, &view.camera);
     let beyond = texels.iter().filter(|t| t.pixel.1 * size.0 + t.pixel.0 > 65_535).count();
     println!("{} visible texels, {beyond} of them past the 65,535th", texels.len());
@@ -365,7 +365,7 @@ fn colour_bleeds_from_the_coloured_walls_onto_the_white_floor() {
     let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
     let view = cornell_view(4.0);
     let indirect = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
-    let reference = render_linear(&gpu, &mut r, &view, "reference", SIZE);
+    let reference = render_linear(&gpu, &mut r, &view, "reference_screen", SIZE);
     let at = |img: &image::Rgba32FImage, x: f32, z: f32| {
         let (px, py) = project(&view, Vec3::new(x, 0.0, z), SIZE);
         img.get_pixel(px, py).0
@@ -433,9 +433,9 @@ fn a_strided_reference_evaluates_the_block_centres_exactly() {
     let size = (72u32, 54u32);
     let view = cornell_view(4.0);
     let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
-    let whole = render_linear(&gpu, &mut r, &view, "reference", size);
+    let whole = render_linear(&gpu, &mut r, &view, "reference_screen", size);
     r.handle.set_reference_stride(3);
-    let strided = render_linear(&gpu, &mut r, &view, "reference", size);
+    let strided = render_linear(&gpu, &mut r, &view, "reference_screen", size);
     let (mut centres, mut lit) = (0, 0);
     for (x, y, p) in strided.enumerate_pixels() {
         if x % 3 == 1 && y % 3 == 1 {
@@ -464,8 +464,10 @@ fn the_reference_converges_as_the_lamp_view_gets_finer() {
     let base = (24u32, 18u32);
     let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
     let view = cornell_view(4.0);
-    let pictures: Vec<image::Rgba32FImage> =
-        [1, 3, 9].iter().map(|&k| render_linear(&gpu, &mut r, &view, "reference", (base.0 * k, base.1 * k))).collect();
+    let pictures: Vec<image::Rgba32FImage> = [1, 3, 9]
+        .iter()
+        .map(|&k| render_linear(&gpu, &mut r, &view, "reference_screen", (base.0 * k, base.1 * k)))
+        .collect();
     // The pixel of picture `level` (k = 3^level) on the ray of coarse pixel (x, y).
     let at = |level: usize, x: u32, y: u32, dx: i32, dy: i32| -> [f32; 4] {
         let k = 3u32.pow(level as u32);

@@ -1,9 +1,15 @@
 //! `headlamp bench --pan`: how steady the GI is. The camera turns right by a small angle each
-//! frame about a fixed eye; the GI's linear indirect light and the exact reference are rendered
+//! frame about a fixed eye; the GI's linear indirect light and the exact reference are computed
 //! for every frame, and `flicker` is how far the GI's error moves from one frame to the next
-//! (4×4-block means, relative to the reference's mean norm). The GI frames are rendered in
-//! sequence by one renderer, as play would; the reference by another, so it never disturbs
-//! anything the GI keeps between frames.
+//! (means of blocks 1/40 of the frame's width, relative to the reference's mean norm). The
+//! reference is the world-fixed one (`gi-reference`): its senders are patches of the level, so
+//! it does not move where the picture does not. The GI frames are rendered in sequence by one
+//! renderer, as play would; the reference's receivers by another, so it never disturbs anything
+//! the GI keeps between frames.
+//!
+//! The reference costs O(receivers × lit patches) on the CPU, so it may be evaluated on every
+//! k-th flicker block only (the same blocks every frame); every figure is then taken over those
+//! blocks, for the GI and the reference alike.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -20,9 +26,12 @@ use plugin_gi::metrics;
 use serde::Serialize;
 
 use crate::cli::BenchArgs;
+use crate::world_reference::WorldReference;
 
-/// Block size of the flicker figure (the issue's definition).
-const FLICKER_BLOCK: u32 = 4;
+/// The flicker figure's blocks are this fraction of the frame's width: 4×4 at 160 wide.
+const FLICKER_BLOCKS_ACROSS: u32 = 40;
+/// Without `--reference-every`, about this many pixels are evaluated a frame.
+const RECEIVERS_TARGET: f64 = 25_000.0;
 
 #[derive(Serialize, Debug)]
 pub struct PanReport {
@@ -35,7 +44,11 @@ pub struct PanReport {
     pub fov_y_deg: f32,
     pub pan_deg: f32,
     pub gi: plugin_gi::GiSettings,
-    /// mean_t ‖e(t+1) − e(t)‖ / mean_t ‖ref(t)‖, e = indirect − reference on 4×4-block means.
+    /// Side of the flicker figure's blocks, pixels (1/40 of the width).
+    pub flicker_block: u32,
+    /// What the reference evaluated, and what it cost.
+    pub reference: ReferenceFigures,
+    /// mean_t ‖e(t+1) − e(t)‖ / mean_t ‖ref(t)‖, e = indirect − reference on flicker-block means.
     pub flicker: f64,
     /// The same for the reference alone: how much the picture itself changes per frame.
     pub reference_change: f64,
@@ -43,33 +56,62 @@ pub struct PanReport {
     pub indirect_change: f64,
     /// Per frame: relative L2 error of 8×8-block means against the reference (as `bench`).
     pub error_per_frame: Vec<f64>,
-    /// With `--reference-senders K`: the same figures against the reference lit by K² as many
-    /// senders.
-    pub finer: Option<FinerReport>,
+    /// With `--converge`: the reference against one with patches of half the size.
+    pub converge: Option<ConvergeReport>,
 }
 
-/// The pan against a reference of the same receivers lit by `senders`² as many senders.
+/// The world reference of a pan.
 #[derive(Serialize, Debug)]
-pub struct FinerReport {
-    pub senders: u32,
+pub struct ReferenceFigures {
+    /// The longest patch edge, metres.
+    pub patch_size_m: f32,
+    /// Every `every`-th flicker block across and down is evaluated.
+    pub every: u32,
+    /// Pixels evaluated per frame (those blocks' pixels), and how many of them had a surface.
+    pub pixels: usize,
+    pub receivers_per_frame: Vec<usize>,
+    /// Per frame: the patches the lamp lit, and the seconds (wall clock) spent finding them
+    /// and summing their light at the receivers.
+    pub lit_patches_per_frame: Vec<usize>,
+    pub patch_seconds_per_frame: Vec<f64>,
+    pub sum_seconds_per_frame: Vec<f64>,
+}
+
+/// The pan's reference against one with patches of half the size.
+#[derive(Serialize, Debug)]
+pub struct ConvergeReport {
+    pub patch_size_m: f32,
+    /// Per frame: the reference's 8×8-block error against it.
+    pub error_per_frame: Vec<f64>,
+    /// The reference's own flicker against it: how much finer patches would move it.
+    pub reference_flicker: f64,
     /// The GI's flicker against it.
     pub flicker: f64,
-    /// The frame-size reference's own flicker against it: how far that reference's sampling
-    /// moves it from frame to frame.
-    pub reference_flicker: f64,
-    /// Per frame: the GI's error against it (8×8 blocks).
-    pub error_per_frame: Vec<f64>,
+    pub lit_patches_per_frame: Vec<usize>,
+    pub patch_seconds_per_frame: Vec<f64>,
+    pub sum_seconds_per_frame: Vec<f64>,
+}
+
+/// The flicker figure's block side for a frame `width` pixels wide.
+pub fn flicker_block(width: u32) -> u32 {
+    (width / FLICKER_BLOCKS_ACROSS).max(1)
+}
+
+/// Every how many flicker blocks the reference is evaluated, unless told: about
+/// [`RECEIVERS_TARGET`] pixels a frame.
+pub fn default_every(size: (u32, u32)) -> u32 {
+    let block = flicker_block(size.0);
+    let pixels = f64::from((size.0 / block) * block) * f64::from((size.1 / block) * block);
+    ((pixels / RECEIVERS_TARGET).sqrt().round() as u32).max(1)
 }
 
 pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) -> anyhow::Result<PanReport> {
     let mut on = gi;
     on.enabled = true;
-    let (plugins, handle) = crate::plugins(on.clone());
+    let (plugins, handle) = crate::plugins(on);
     let mut renderer = Renderer::new(gpu, &level.scene, plugins)?;
     renderer.set_view("indirect").map_err(|e| anyhow!(e))?;
-    let (reference_plugins, _) = crate::plugins(on);
-    let mut reference = Renderer::new(gpu, &level.scene, reference_plugins)?;
-    reference.set_view("reference").map_err(|e| anyhow!(e))?;
+    let mut reference = WorldReference::new(gpu, &level.scene)?;
     if let Some(dir) = &args.out_dir {
         std::fs::create_dir_all(dir).with_context(|| format!("--out-dir {}", dir.display()))?;
     }
@@ -78,38 +120,54 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
     let start: ViewState = initial_view(level, &overrides);
     let (w, h) = args.size();
     let n = args.frames() as usize;
+    let block = flicker_block(w);
+    let every = args.reference_every.unwrap_or_else(|| default_every((w, h)));
+    let mask = metrics::block_mask(w, h, block, every);
+    let (patch, half) = (args.patch_size(), args.patch_size() / 2.0);
     let target = HeadlessTarget::new(gpu, w, h, ImageKind::Linear);
-    let mut finer = args.reference_senders.map(|k| FinerReference::new(gpu, level, &handle, k, (w, h))).transpose()?;
-    let (mut finer_refs, mut finer_errors) = (Vec::new(), Vec::new());
     let (mut tests, mut references, mut errors) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut receivers_per_frame, mut lit, mut seconds) = (Vec::new(), Vec::new(), (Vec::new(), Vec::new()));
+    let (mut halves, mut half_errors, mut half_lit) = (Vec::new(), Vec::new(), Vec::new());
+    let mut half_seconds = (Vec::new(), Vec::new());
     for t in 0..n {
         let mut view = start.clone();
         // Turning right is a negative turn about +Y, about the eye.
         let turn = Quat::from_rotation_y(-(args.pan_deg * t as f32).to_radians());
         view.camera.rotation = (turn * start.camera.rotation).normalize();
         let indirect = linear(target.render(gpu, &mut renderer, &view)?)?;
-        let exact = linear(target.render(gpu, &mut reference, &view)?)?;
+        let receivers = reference.receivers(gpu, &view, (w, h))?;
+        let exact = reference.evaluate(&view, (w, h), &receivers, Some(&mask), patch);
         if let Some(dir) = &args.out_dir {
             save(&indirect, &dir.join(format!("indirect_{t:03}.exr")))?;
-            save(&exact, &dir.join(format!("reference_{t:03}.exr")))?;
+            save(&exact.image, &dir.join(format!("reference_{t:03}.exr")))?;
         }
-        if let Some(finer) = &mut finer {
-            let fine = finer.render(gpu, &view)?;
+        if args.converge {
+            let fine = reference.evaluate(&view, (w, h), &receivers, Some(&mask), half);
             if let Some(dir) = &args.out_dir {
-                save(&fine, &dir.join(format!("reference_finer_{t:03}.exr")))?;
+                save(&fine.image, &dir.join(format!("reference_half_{t:03}.exr")))?;
             }
-            finer_errors.push(metrics::block_error(&indirect, &fine));
-            finer_refs.push(metrics::block_means(&fine, FLICKER_BLOCK));
+            half_errors.push(metrics::block_error_masked(&exact.image, &fine.image, &mask));
+            halves.push(metrics::block_means_masked(&fine.image, block, &mask));
+            half_lit.push(fine.lit_patches);
+            half_seconds.0.push(fine.patch_seconds);
+            half_seconds.1.push(fine.sum_seconds);
         }
-        errors.push(metrics::block_error(&indirect, &exact));
-        tests.push(metrics::block_means(&indirect, FLICKER_BLOCK));
-        references.push(metrics::block_means(&exact, FLICKER_BLOCK));
+        errors.push(metrics::block_error_masked(&indirect, &exact.image, &mask));
+        tests.push(metrics::block_means_masked(&indirect, block, &mask));
+        references.push(metrics::block_means_masked(&exact.image, block, &mask));
+        receivers_per_frame.push(exact.receivers);
+        lit.push(exact.lit_patches);
+        seconds.0.push(exact.patch_seconds);
+        seconds.1.push(exact.sum_seconds);
     }
-    let finer = finer.map(|f| FinerReport {
-        senders: f.senders,
-        flicker: metrics::flicker(&tests, &finer_refs),
-        reference_flicker: metrics::flicker(&references, &finer_refs),
-        error_per_frame: finer_errors,
+    let converge = args.converge.then(|| ConvergeReport {
+        patch_size_m: half,
+        error_per_frame: half_errors,
+        reference_flicker: metrics::flicker(&references, &halves),
+        flicker: metrics::flicker(&tests, &halves),
+        lit_patches_per_frame: half_lit,
+        patch_seconds_per_frame: half_seconds.0,
+        sum_seconds_per_frame: half_seconds.1,
     });
     Ok(PanReport {
         level: args.level.display().to_string(),
@@ -121,47 +179,22 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
         fov_y_deg: start.camera.fov_y().unwrap_or(0.0).to_degrees(),
         pan_deg: args.pan_deg,
         gi: handle.settings(),
+        flicker_block: block,
+        reference: ReferenceFigures {
+            patch_size_m: patch,
+            every,
+            pixels: mask.iter().filter(|&&m| m).count(),
+            receivers_per_frame,
+            lit_patches_per_frame: lit,
+            patch_seconds_per_frame: seconds.0,
+            sum_seconds_per_frame: seconds.1,
+        },
         flicker: metrics::flicker(&tests, &references),
         reference_change: metrics::change(&references),
         indirect_change: metrics::change(&tests),
         error_per_frame: errors,
-        finer,
+        converge,
     })
-}
-
-/// The reference of a frame's receivers lit by k² as many senders: rendered at k times the
-/// frame's size, evaluating only the centre pixel of each k×k block (`set_reference_stride`),
-/// which looks along the ray of the frame's pixel.
-struct FinerReference {
-    senders: u32,
-    renderer: Renderer,
-    target: HeadlessTarget,
-}
-
-impl FinerReference {
-    fn new(gpu: &Gpu, level: &Level, handle: &plugin_gi::GiHandle, k: u32, (w, h): (u32, u32)) -> anyhow::Result<Self> {
-        let limit = gpu.device.limits().max_texture_dimension_2d;
-        if w.saturating_mul(k) > limit || h.saturating_mul(k) > limit {
-            return Err(anyhow!(
-                "--reference-senders {k}: the finer reference of a {w}x{h} pan is {}x{} pixels, more than this \
-                 device's {limit}",
-                w * k,
-                h * k
-            ));
-        }
-        let (plugins, finer) = crate::plugins(handle.settings());
-        finer.set_reference_stride(k);
-        let mut renderer = Renderer::new(gpu, &level.scene, plugins)?;
-        renderer.set_view("reference").map_err(|e| anyhow!(e))?;
-        Ok(Self { senders: k, renderer, target: HeadlessTarget::new(gpu, w * k, h * k, ImageKind::Linear) })
-    }
-
-    fn render(&mut self, gpu: &Gpu, view: &ViewState) -> anyhow::Result<image::Rgba32FImage> {
-        let full = linear(self.target.render(gpu, &mut self.renderer, view)?)?;
-        let k = self.senders;
-        let (w, h) = (full.width() / k, full.height() / k);
-        Ok(image::Rgba32FImage::from_fn(w, h, |x, y| *full.get_pixel(x * k + k / 2, y * k + k / 2)))
-    }
 }
 
 fn linear(image: RenderedImage) -> anyhow::Result<image::Rgba32FImage> {
@@ -190,8 +223,28 @@ pub fn table(r: &PanReport) -> String {
         "GI: split ratio {}, indirect target at {} of the view, {} bounce(s)",
         r.gi.split_ratio, r.gi.resolution_scale, r.gi.bounces
     );
+    let f = &r.reference;
+    let (median_lit, _) = median_and_worst(&f.lit_patches_per_frame.iter().map(|&v| v as f64).collect::<Vec<_>>());
+    let (median_s, worst_s) = median_and_worst(&frame_seconds(&f.patch_seconds_per_frame, &f.sum_seconds_per_frame));
+    let (median_patches, _) = median_and_worst(&f.patch_seconds_per_frame);
+    let b = r.flicker_block;
+    let blocks = match f.every {
+        1 => format!("on every {b}x{b} flicker block"),
+        k => format!("on every {} {b}x{b} flicker block across and down", ordinal(k)),
+    };
+    let _ = writeln!(
+        s,
+        "reference: world-fixed patches of at most {} cm, {blocks} ({} pixels); median {:.0} lit patches, \
+         {:.2} s a frame (worst {:.2} s; finding the lit patches {:.2} s)",
+        100.0 * f.patch_size_m,
+        f.pixels,
+        median_lit,
+        median_s,
+        worst_s,
+        median_patches
+    );
     let _ = writeln!(s);
-    let _ = writeln!(s, "| figure (4x4-block means) | value |");
+    let _ = writeln!(s, "| figure ({b}x{b}-block means) | value |");
     let _ = writeln!(s, "| --- | ---: |");
     let _ = writeln!(s, "| flicker: mean ‖e(t+1) − e(t)‖ / mean ‖ref‖ | {:.2} % |", 100.0 * r.flicker);
     let _ = writeln!(s, "| the reference's own change per frame | {:.2} % |", 100.0 * r.reference_change);
@@ -203,21 +256,42 @@ pub fn table(r: &PanReport) -> String {
         100.0 * median,
         100.0 * worst
     );
-    if let Some(f) = &r.finer {
-        let k = f.senders;
-        let (median, _) = median_and_worst(&f.error_per_frame);
-        let _ =
-            writeln!(s, "| against the reference with {k}x{k} as many senders: flicker | {:.2} % |", 100.0 * f.flicker);
+    if let Some(c) = &r.converge {
+        let cm = 100.0 * c.patch_size_m;
+        let (median, worst) = median_and_worst(&c.error_per_frame);
         let _ = writeln!(
             s,
-            "| the {}x{} reference's own flicker against it | {:.2} % |",
-            r.size[0],
-            r.size[1],
-            100.0 * f.reference_flicker
+            "| the reference vs its {cm} cm patches (8x8 blocks), median / worst frame | {:.2} % / {:.2} % |",
+            100.0 * median,
+            100.0 * worst
         );
-        let _ = writeln!(s, "| error vs it (8x8 blocks), median frame | {:.2} % |", 100.0 * median);
+        let _ = writeln!(
+            s,
+            "| the reference's own flicker against its {cm} cm patches | {:.2} % |",
+            100.0 * c.reference_flicker
+        );
+        let _ = writeln!(s, "| the GI's flicker against the {cm} cm reference | {:.2} % |", 100.0 * c.flicker);
+        let (lit, _) = median_and_worst(&c.lit_patches_per_frame.iter().map(|&v| v as f64).collect::<Vec<_>>());
+        let (median_s, _) = median_and_worst(&frame_seconds(&c.patch_seconds_per_frame, &c.sum_seconds_per_frame));
+        let _ = writeln!(s, "| {cm} cm patches: median lit patches, s a frame | {lit:.0}, {median_s:.2} s |");
     }
     s
+}
+
+fn frame_seconds(patches: &[f64], sums: &[f64]) -> Vec<f64> {
+    patches.iter().zip(sums).map(|(a, b)| a + b).collect()
+}
+
+/// "2nd", "3rd", "4th", "11th", "21st" …
+fn ordinal(k: u32) -> String {
+    let suffix = match (k % 10, k % 100) {
+        (_, 11..=13) => "th",
+        (1, _) => "st",
+        (2, _) => "nd",
+        (3, _) => "rd",
+        _ => "th",
+    };
+    format!("{k}{suffix}")
 }
 
 /// The median (the upper one of an even count) and the largest of per-frame figures; NaN when
@@ -227,4 +301,24 @@ fn median_and_worst(figures: &[f64]) -> (f64, f64) {
     sorted.sort_by(f64::total_cmp);
     let median = sorted.get(sorted.len() / 2).copied().unwrap_or(f64::NAN);
     (median, sorted.last().copied().unwrap_or(f64::NAN))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn flicker_blocks_are_a_fortieth_of_the_width_and_the_reference_covers_about_25k_pixels() {
+        assert_eq!([160, 640, 1280, 20].map(flicker_block), [4, 16, 32, 1]);
+        assert_eq!([2, 3, 4, 11, 21, 22].map(ordinal), ["2nd", "3rd", "4th", "11th", "21st", "22nd"]);
+        assert_eq!(default_every((160, 120)), 1, "all of a 160x120 frame");
+        assert_eq!(default_every((640, 360)), 3);
+        assert_eq!(default_every((1280, 720)), 6);
+        for size in [(640, 360), (1280, 720)] {
+            let every = default_every(size);
+            let mask = metrics::block_mask(size.0, size.1, flicker_block(size.0), every);
+            let pixels = mask.iter().filter(|&&m| m).count();
+            assert!((20_000..=30_000).contains(&pixels), "{size:?}: {pixels} pixels");
+        }
+    }
 }

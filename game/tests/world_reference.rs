@@ -1,0 +1,122 @@
+//! The world-fixed reference on the GPU's receivers (lavapipe): its pixels are where the
+//! G-buffer says, it integrates the same bounce as the GPU's lamp-texel reference
+//! (`reference_screen`), and it has converged at its 2 cm patches.
+
+use engine::camera::Camera;
+use engine::frame::ViewState;
+use engine::glam::Vec3;
+use engine::gpu::Gpu;
+use engine::headlamp::Headlamp;
+use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
+use engine::renderer::Renderer;
+use engine::scene::{HeadlampProfile, IntensityDistribution, Material, Mesh, Scene, Vertex};
+use game::world_reference::WorldReference;
+use gi_reference::DEFAULT_MAX_EDGE;
+use plugin_gi::metrics::block_error;
+
+const SIZE: (u32, u32) = (160, 120);
+const FOV_Y: f32 = 50.0 * std::f32::consts::PI / 180.0;
+
+/// Appends a quad (corners counter-clockwise seen from the side its normal points to).
+fn quad(scene: &mut Scene, corners: [Vec3; 4], material: usize) {
+    let n = (corners[1] - corners[0]).cross(corners[2] - corners[0]).normalize();
+    let vertices = corners.iter().map(|p| Vertex::new(p.to_array(), n.to_array(), [0.0; 2])).collect();
+    let name = format!("quad{}", scene.meshes.len());
+    scene.meshes.push(Mesh { name, vertices, indices: vec![0, 1, 2, 0, 2, 3], material });
+}
+
+/// A Cornell-like box open towards +Z (x ∈ [-1, 1], y ∈ [0, 2], z ∈ [-1, 1]): red left wall,
+/// green right wall, white floor, ceiling and back wall, a white block on the floor.
+fn cornell_box() -> Scene {
+    let material = |rgb: [f32; 3]| Material { base_color: [rgb[0], rgb[1], rgb[2], 1.0], ..Material::default() };
+    let mut s = Scene {
+        materials: vec![material([0.75, 0.75, 0.75]), material([0.75, 0.1, 0.1]), material([0.1, 0.7, 0.1])],
+        ..Scene::default()
+    };
+    let v = Vec3::new;
+    quad(&mut s, [v(-1.0, 0.0, 1.0), v(1.0, 0.0, 1.0), v(1.0, 0.0, -1.0), v(-1.0, 0.0, -1.0)], 0);
+    quad(&mut s, [v(-1.0, 2.0, -1.0), v(1.0, 2.0, -1.0), v(1.0, 2.0, 1.0), v(-1.0, 2.0, 1.0)], 0);
+    quad(&mut s, [v(-1.0, 0.0, -1.0), v(1.0, 0.0, -1.0), v(1.0, 2.0, -1.0), v(-1.0, 2.0, -1.0)], 0);
+    quad(&mut s, [v(-1.0, 0.0, 1.0), v(-1.0, 0.0, -1.0), v(-1.0, 2.0, -1.0), v(-1.0, 2.0, 1.0)], 1);
+    quad(&mut s, [v(1.0, 0.0, -1.0), v(1.0, 0.0, 1.0), v(1.0, 2.0, 1.0), v(1.0, 2.0, -1.0)], 2);
+    let (x0, x1, z0, z1, h) = (0.1, 0.6, -0.5, 0.0, 0.6);
+    quad(&mut s, [v(x0, 0.0, z1), v(x1, 0.0, z1), v(x1, h, z1), v(x0, h, z1)], 0);
+    quad(&mut s, [v(x0, 0.0, z0), v(x0, 0.0, z1), v(x0, h, z1), v(x0, h, z0)], 0);
+    quad(&mut s, [v(x0, h, z1), v(x1, h, z1), v(x1, h, z0), v(x0, h, z0)], 0);
+    s
+}
+
+/// A uniform 10 W/sr lamp on a camera looking into the box, from `eye` at `target`.
+fn view(eye: Vec3, target: Vec3) -> ViewState {
+    let profile =
+        HeadlampProfile { power: 10.0, fov_y: FOV_Y, color: [1.0; 3], distribution: IntensityDistribution::Uniform };
+    ViewState { camera: Camera::look_at(eye, target, FOV_Y), headlamp: Headlamp::new(profile), ..ViewState::default() }
+}
+
+fn render_linear(gpu: &Gpu, renderer: &mut Renderer, view: &ViewState, name: &str) -> image::Rgba32FImage {
+    renderer.set_view(name).unwrap();
+    match HeadlessTarget::new(gpu, SIZE.0, SIZE.1, ImageKind::Linear).render(gpu, renderer, view).unwrap() {
+        RenderedImage::Linear(img) => img,
+        RenderedImage::Display(_) => unreachable!(),
+    }
+}
+
+fn sum(img: &image::Rgba32FImage) -> f64 {
+    img.pixels().map(|p| p[0] as f64 + p[1] as f64 + p[2] as f64).sum()
+}
+
+#[test]
+fn receivers_lie_where_the_gbuffer_sees_the_walls() {
+    let gpu = Gpu::headless().unwrap();
+    let scene = cornell_box();
+    let mut reference = WorldReference::new(&gpu, &scene).unwrap();
+    let v = view(Vec3::new(0.3, 1.2, 3.4), Vec3::new(-0.2, 0.8, 0.0));
+    let receivers = reference.receivers(&gpu, &v, SIZE).unwrap();
+    let (mut back, mut floor) = (0, 0);
+    for r in receivers.iter().filter(|r| r.normal != Vec3::ZERO) {
+        // Every surface point is on one of the box's planes, facing into it.
+        if r.normal.z > 0.99 && r.position.z < -0.9 {
+            assert!((r.position.z + 1.0).abs() < 1e-3, "a back wall receiver at {}", r.position);
+            back += 1;
+        }
+        if r.normal.y > 0.99 && r.position.y < 0.1 {
+            assert!(r.position.y.abs() < 1e-3, "a floor receiver at {}", r.position);
+            floor += 1;
+        }
+        assert!(r.albedo.max_element() > 0.05, "ρ from the albedo view");
+    }
+    assert!(back > 3000 && floor > 1000, "{back} back wall and {floor} floor receivers");
+}
+
+#[test]
+fn the_world_reference_integrates_the_bounce_the_gpu_reference_does_and_has_converged() {
+    let gpu = Gpu::headless().unwrap();
+    let scene = cornell_box();
+    let (plugins, _) = game::plugins(plugin_gi::GiSettings::default());
+    let mut renderer = Renderer::new(&gpu, &scene, plugins).unwrap();
+    let mut reference = WorldReference::new(&gpu, &scene).unwrap();
+    for v in [
+        view(Vec3::new(0.0, 1.0, 3.4), Vec3::new(0.0, 1.0, 0.0)),
+        view(Vec3::new(0.5, 1.4, 2.4), Vec3::new(-0.9, 0.4, -0.9)),
+    ] {
+        let screen = render_linear(&gpu, &mut renderer, &v, "reference_screen");
+        let receivers = reference.receivers(&gpu, &v, SIZE).unwrap();
+        let world = reference.evaluate(&v, SIZE, &receivers, None, DEFAULT_MAX_EDGE);
+        let error = block_error(&world.image, &screen);
+        let energy = sum(&world.image) / sum(&screen) - 1.0;
+        println!(
+            "camera at {}: world vs screen reference {:.2} %, energy {:+.2} % ({} lit patches)",
+            v.camera.position,
+            100.0 * error,
+            100.0 * energy,
+            world.lit_patches
+        );
+        assert!(error < 0.03 && energy.abs() < 0.02, "the references differ by {error:.4} (energy {energy:+.4})");
+        // Convergence: 2 cm patches against 1 cm ones, on the same receivers.
+        let fine = reference.evaluate(&v, SIZE, &receivers, None, DEFAULT_MAX_EDGE / 2.0);
+        let converged = block_error(&world.image, &fine.image);
+        println!("  2 cm vs 1 cm patches: {:.3} % ({} lit patches)", 100.0 * converged, fine.lit_patches);
+        assert!(fine.lit_patches > 3 * world.lit_patches);
+        assert!(converged <= 0.005, "2 cm patches are {converged:.4} off 1 cm ones");
+    }
+}
