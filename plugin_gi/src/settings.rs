@@ -41,7 +41,7 @@ declare::settings! {
         /// Each frame's indirect light is this much last frames' (reprojected to the same
         /// world points) and the rest its own gather: the gather's lights sit in screen space,
         /// so its small errors move with the view, and averaging holds them still. 0: none.
-        history: f32 = 0.8, 0.0..=0.95, "share of the indirect light kept from earlier frames (0: none)";
+        history: f32 = 0.5, 0.0..=0.95, "share of the indirect light kept from earlier frames (0: none)";
     }
 }
 

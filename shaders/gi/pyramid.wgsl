@@ -3,9 +3,9 @@
 // `flux` writes levels 0–3 (each workgroup reduces its 8×8 texels in workgroup memory) and
 // `reduce` levels 4–6 from level 3 the same way.
 //
-// The base (level 0) is the lamp view subsampled to params.flux_size: each base texel takes the
-// G-buffer texel at its centre and stands for its whole block (its Ω is the block's). Attached,
-// the base is as fine as the indirect target's receivers, which never see finer senders.
+// The base (level 0) is the lamp view reduced to params.flux_size: each base texel merges its
+// block of lamp-view texels as the levels above merge theirs. Attached, the base is as fine as
+// the indirect target's receivers, which never see finer senders.
 //
 // Flux per texel: Φ = ρ · I(ω) · Ω_texel (I: the lamp, plus the camera flash while attached);
 // for further bounces Φ = ρ · E · A_texel from the previous bounce's irradiance. A texel is a
@@ -63,35 +63,75 @@ fn reduce_three_levels(local: vec2u, group: vec2u, base: u32) {
     }
 }
 
-// One texel of the lamp view as a light (zero flux where nothing is seen or nothing is lit).
-fn texel_node(id: vec2u) -> Node {
+// One texel of the lamp view (at `t`, of a view of `view` texels) as a light: zero flux where
+// nothing is seen or nothing is lit.
+fn view_texel_node(t: vec2u, view: vec2u, flux_texel: vec2u) -> Node {
     var node: Node;
     node.merged = 1u;
-    let view = vec2f(textureDimensions(gbuffer_normal));
-    let t = vec2i((vec2f(id) + 0.5) * view / vec2f(params.flux_size));
-    let normal = textureLoad(gbuffer_normal, t, 0);
-    let omega = texel_solid_angle(id, params.flux_size, params.lamp_tan);
-    var flux = vec3f(0.0);
-    if normal.w > 0.0 {
-        let x = textureLoad(gbuffer_position, t, 0).xyz;
-        let rho = textureLoad(gbuffer_albedo, t, 0).rgb;
-        let area = texel_area(omega, x, normal.xyz, globals.lamp_pos.xyz);
-        if params.source == 0u {
-            flux = lamp_reflected_flux(rho, x, omega);
-        } else {
-            let low = vec2u(vec2f(id) * vec2f(params.indirect_size) / vec2f(params.flux_size));
-            let e = textureLoad(previous_irradiance, vec2i(low), 0).rgb;
-            flux = rho * e * area;
-        }
-        node.position = x;
-        node.normal = normal.xyz;
-        node.area = area;
-        node.extent = sqrt(area / PI);
+    if any(t >= view) {
+        return node;
     }
-    node.flux = flux;
-    textureStore(flux_out, vec2i(id), vec4f(flux, 1.0));
+    let normal = textureLoad(gbuffer_normal, vec2i(t), 0);
+    if normal.w <= 0.0 {
+        return node;
+    }
+    let omega = texel_solid_angle(t, view, params.lamp_tan);
+    let x = textureLoad(gbuffer_position, vec2i(t), 0).xyz;
+    let rho = textureLoad(gbuffer_albedo, vec2i(t), 0).rgb;
+    let area = texel_area(omega, x, normal.xyz, globals.lamp_pos.xyz);
+    if params.source == 0u {
+        node.flux = lamp_reflected_flux(rho, x, omega);
+    } else {
+        let low = vec2u(vec2f(flux_texel) * vec2f(params.indirect_size) / vec2f(params.flux_size));
+        let e = textureLoad(previous_irradiance, vec2i(low), 0).rgb;
+        node.flux = rho * e * area;
+    }
+    node.position = x;
+    node.normal = normal.xyz;
+    node.area = area;
+    node.extent = sqrt(area / PI);
+    return node;
+}
+
+// The 2×2, 4×4 and 8×8 blocks of view texels from `t`, merged as the pyramid merges.
+fn block2(t: vec2u, view: vec2u, id: vec2u) -> Node {
+    return merge(view_texel_node(t, view, id), view_texel_node(t + vec2u(1u, 0u), view, id),
+        view_texel_node(t + vec2u(0u, 1u), view, id), view_texel_node(t + vec2u(1u, 1u), view, id));
+}
+
+fn block4(t: vec2u, view: vec2u, id: vec2u) -> Node {
+    return merge(block2(t, view, id), block2(t + vec2u(2u, 0u), view, id), block2(t + vec2u(0u, 2u), view, id),
+        block2(t + vec2u(2u, 2u), view, id));
+}
+
+fn block8(t: vec2u, view: vec2u, id: vec2u) -> Node {
+    return merge(block4(t, view, id), block4(t + vec2u(4u, 0u), view, id), block4(t + vec2u(0u, 4u), view, id),
+        block4(t + vec2u(4u, 4u), view, id));
+}
+
+// Texel `id` of the flux G-buffer: the block of lamp-view texels it stands for, every one of
+// them a sender merged into it (not the one at its centre alone, which jumped from surface to
+// surface as the view moved and made the senders shimmer).
+fn texel_node(id: vec2u) -> Node {
+    let view = textureDimensions(gbuffer_normal);
+    // The block's side: the power of two the view was halved by (flux_size = ⌈view / k⌉).
+    var k = 1u;
+    while k < 8u && any((view + k - 1u) / k != params.flux_size) {
+        k *= 2u;
+    }
+    let t = id * k;
+    var node: Node;
+    switch k {
+        case 1u: { node = view_texel_node(t, view, id); }
+        case 2u: { node = block2(t, view, id); }
+        case 4u: { node = block4(t, view, id); }
+        default: { node = block8(t, view, id); }
+    }
+    // merge() leaves no surface where nothing reflects; the views show zero there.
+    let omega = texel_solid_angle(id, params.flux_size, params.lamp_tan);
+    textureStore(flux_out, vec2i(id), vec4f(node.flux, 1.0));
     // The flux view: Φ per unit lamp solid angle relative to the lamp power, i.e. ρ·T(ω).
-    textureStore(flux_view_out, vec2i(id), vec4f(flux / (omega * max(params.lamp_power, 1e-20)), 1.0));
+    textureStore(flux_view_out, vec2i(id), vec4f(node.flux / (omega * max(params.lamp_power, 1e-20)), 1.0));
     return node;
 }
 
