@@ -153,7 +153,7 @@ fn bench_rejects_bad_input_with_one_line() {
         (vec!["bench", "--level", &cellar, "--set", "gi.split_ratio=9"], "split_ratio"),
         (vec!["bench", "--level", &cellar, "--json", bad_json.to_str().unwrap()], "--json"),
         (vec!["bench", "--level", &cellar, "--target-fps", "5"], "--target-fps"),
-        (vec!["bench", "--level", &cellar, "--converge"], "--pan"),
+        (vec!["bench", "--level", &cellar, "--pan", "--reference-every", "0"], "--reference-every"),
         (vec!["bench", "--level", &cellar, "--pan", "--patch-size", "0"], "--patch-size"),
     ];
     for (args, needle) in cases {

@@ -53,6 +53,13 @@ impl Lamp {
         self.intensity.max_element() > 0.0
     }
 
+    /// Whether `x` is inside the lamp's frustum (where [`Lamp::intensity_towards`] can be
+    /// non-zero).
+    pub fn in_frustum(&self, x: Vec3) -> bool {
+        let clip = self.view_proj * x.extend(1.0);
+        clip.w > 0.0 && clip.x.abs() <= clip.w && clip.y.abs() <= clip.w
+    }
+
     /// Radiant intensity towards world point `x` (W/sr): zero behind the lamp or outside its
     /// frustum, else P·colour·T(uv) with T sampled bilinearly, edges clamped (the shaders'
     /// `linear_clamp` sampler: texel centres at +0.5).

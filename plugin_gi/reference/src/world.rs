@@ -79,6 +79,23 @@ pub fn subdivisions(corners: &[Vec3; 3], max_edge: f32) -> u32 {
     ((longest / max_edge).ceil() as u32).max(1)
 }
 
+/// A patch the lamp frustum's edge crosses takes its light from this many² points.
+pub const EDGE_SAMPLES: u32 = 8;
+
+/// The barycentric centroids (u along b − a, v along c − a) of the n² sub-triangles of a
+/// triangle, in [`TriangleFrame::row`]'s order.
+fn sub_centroids(n: u32, mut f: impl FnMut(f32, f32)) {
+    let m = n as f32;
+    for i in 0..n {
+        for j in 0..n - i {
+            f((i as f32 + 1.0 / 3.0) / m, (j as f32 + 1.0 / 3.0) / m);
+            if j + 1 < n - i {
+                f((i as f32 + 2.0 / 3.0) / m, (j as f32 + 2.0 / 3.0) / m);
+            }
+        }
+    }
+}
+
 /// Rows of sub-triangles handed to one task: a large floor is cut into many.
 const ROWS_PER_TASK: u32 = 32;
 
@@ -245,20 +262,30 @@ impl World {
         if side == 0.0 || (side < 0.0 && !t.double_sided) {
             return None;
         }
-        let intensity = lamp.intensity_towards(patch.centre);
-        if intensity.max_element() <= 0.0 {
-            return None;
-        }
-        if shadows.hides(patch.centre) {
+        // I·cos/d², at the centre, or averaged over the patch where the frustum's edge crosses it
+        // (the centre alone would switch the whole patch on or off as the edge sweeps by).
+        let at = |x: Vec3| {
+            let l = lamp.position - x;
+            let d2 = l.length_squared();
+            lamp.intensity_towards(x) * (normal.dot(l).max(0.0) / (d2 * d2.sqrt()))
+        };
+        let inside = lamp.in_frustum(patch.centre);
+        let light = if patch.corners.iter().all(|&c| lamp.in_frustum(c) == inside) {
+            at(patch.centre)
+        } else {
+            let [a, b, c] = patch.corners;
+            let mut sum = Vec3::ZERO;
+            sub_centroids(EDGE_SAMPLES, |u, v| sum += at(a + (b - a) * u + (c - a) * v));
+            sum / (EDGE_SAMPLES * EDGE_SAMPLES) as f32
+        };
+        if light.max_element() <= 0.0 || shadows.hides(patch.centre) {
             return None;
         }
         let rho = self.albedo(t, u, v)?;
         if rho.max_element() <= 0.0 || !self.visible(lamp.position, patch.centre + normal * SHADOW_OFFSET) {
             return None;
         }
-        let d2 = to_lamp.length_squared();
-        let cos = side.abs() / d2.sqrt();
-        Some(LitPatch { patch, normal, flux: rho * intensity * (cos * patch.area / d2) })
+        Some(LitPatch { patch, normal, flux: rho * light * patch.area })
     }
 
     /// Whether the segment from the lamp to `q` is clear: no double-sided triangle on it, and no

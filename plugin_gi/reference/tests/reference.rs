@@ -205,6 +205,20 @@ fn a_uniform_lamp_facing_a_plane_delivers_rho_times_intensity_times_its_solid_an
 }
 
 #[test]
+fn patches_the_frustums_edge_crosses_are_lit_in_part() {
+    // A floor larger than the frustum's footprint, cut into patches as large as 15 cm whose
+    // grid does not follow the footprint's edges: Φ is still ρ·I·Ω.
+    let mut scene = Scene { materials: vec![grey(0.6, false)], ..Scene::default() };
+    square(&mut scene, Vec3::new(0.03, 0.0, -0.05), 2.0, true, 0);
+    let lamp = lamp(Vec3::new(0.0, 1.0, 0.0), Vec3::ZERO, 90.0, 3.0);
+    let expected = 0.6 * 3.0 * pyramid_solid_angle(1.0, 1.0);
+    for max_edge in [0.15, 0.1, DEFAULT_MAX_EDGE] {
+        let total = World::new(&scene).lit(&lamp, max_edge).total_flux().x;
+        assert!(relative(total, expected) < 2e-3, "{max_edge} m patches: Φ = {total} W, ρ·I·Ω = {expected} W");
+    }
+}
+
+#[test]
 fn an_occluder_shadows_the_patches_behind_it_unless_it_is_a_back_face() {
     let (mut floor, lamp) = floor_under_a_lamp(0.6);
     let floor_patches = |lit: &LitPatches| lit.patches().iter().filter(|p| p.patch.triangle < 2).count();
