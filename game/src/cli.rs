@@ -150,6 +150,14 @@ pub struct BenchArgs {
     /// With --pan: degrees turned right (towards +X when looking down −Z) per frame.
     #[arg(long, default_value_t = 0.5, value_parser = parse_pan_deg, requires = "pan")]
     pub pan_deg: f32,
+    /// With --pan: also walk forward this many centimetres a frame (along the first frame's
+    /// view, level), e.g. `--pan-deg 0 --walk-cm 2` for a walk.
+    #[arg(long, default_value_t = 0.0, value_parser = parse_walk_cm, requires = "pan")]
+    pub walk_cm: f32,
+    /// With --pan: the headlamp set down at EX,EY,EZ pointing at TX,TY,TZ (metres) for the
+    /// whole pan, while the camera turns [default: on the camera].
+    #[arg(long = "lamp", value_parser = parse_camera, allow_hyphen_values = true, requires = "pan")]
+    pub pan_lamp: Option<(Vec3, Vec3)>,
     /// With --pan: write each frame's linear indirect light and reference as
     /// DIR/indirect_NNN.exr and DIR/reference_NNN.exr (the folder is created), and with
     /// --converge DIR/reference_half_NNN.exr.
@@ -335,6 +343,13 @@ pub fn parse_pan_deg(s: &str) -> Result<f32, String> {
     match s.trim().parse::<f32>() {
         Ok(v) if v.is_finite() && v.abs() <= 45.0 => Ok(v),
         _ => Err(format!("'{s}': the pan must be a number of degrees per frame from -45 to 45")),
+    }
+}
+
+pub fn parse_walk_cm(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() && v.abs() <= 100.0 => Ok(v),
+        _ => Err(format!("'{s}': the walk must be a number of centimetres per frame from -100 to 100")),
     }
 }
 

@@ -94,6 +94,10 @@ fn bench_pan_measures_against_the_world_reference_and_its_convergence() {
         "--reference-every",
         "2",
         "--converge",
+        "--walk-cm",
+        "2",
+        "--lamp",
+        "0,1.6,3.8:0,1,-4",
         "--out-dir",
         dir.to_str().unwrap(),
         "--json",
@@ -112,6 +116,16 @@ fn bench_pan_measures_against_the_world_reference_and_its_convergence() {
     }
     let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(report["flicker_block"], 8, "1/40 of 320 pixels");
+    assert_eq!(report["walk_cm"], 2.0);
+    let lamp: Vec<f64> = report["lamp"]
+        .as_array()
+        .expect("the lamp set down")
+        .iter()
+        .flat_map(|p| p.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect::<Vec<_>>())
+        .collect();
+    let expected = [0.0, 1.6, 3.8, 0.0, 1.0, -4.0];
+    assert!(lamp.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-6), "lamp {lamp:?}");
+    assert!(stdout.contains("walking forward 2 cm a frame") && stdout.contains("lamp set down at 0.00,1.60,3.80"));
     let reference = &report["reference"];
     assert_eq!(reference["every"], 2);
     assert_eq!(reference["pixels"], 20 * 6 * 64, "every other block of 40x12, across and down");
@@ -147,7 +161,7 @@ fn bench_rejects_bad_input_with_one_line() {
     let missing = dir.join("nope.gltf");
     let bad_json = dir.join("no_such_dir").join("out.json");
     let cellar = cellar();
-    let cases: [(Vec<&str>, &str); 7] = [
+    let cases: [(Vec<&str>, &str); 9] = [
         (vec!["bench", "--level", missing.to_str().unwrap()], "nope.gltf"),
         (vec!["bench", "--level", &cellar, "--frames", "0"], "--frames"),
         (vec!["bench", "--level", &cellar, "--set", "gi.split_ratio=9"], "split_ratio"),
@@ -155,6 +169,8 @@ fn bench_rejects_bad_input_with_one_line() {
         (vec!["bench", "--level", &cellar, "--target-fps", "5"], "--target-fps"),
         (vec!["bench", "--level", &cellar, "--pan", "--reference-every", "0"], "--reference-every"),
         (vec!["bench", "--level", &cellar, "--pan", "--patch-size", "0"], "--patch-size"),
+        (vec!["bench", "--level", &cellar, "--pan", "--walk-cm", "500"], "--walk-cm"),
+        (vec!["bench", "--level", &cellar, "--pan", "--lamp", "0,1,2"], "--lamp"),
     ];
     for (args, needle) in cases {
         let out = headlamp(&args);

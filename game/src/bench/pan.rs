@@ -16,7 +16,7 @@ use std::path::Path;
 
 use anyhow::{anyhow, Context};
 use engine::frame::ViewState;
-use engine::glam::Quat;
+use engine::glam::{Quat, Vec3};
 use engine::gpu::Gpu;
 use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::renderer::Renderer;
@@ -43,6 +43,10 @@ pub struct PanReport {
     pub forward: [f32; 3],
     pub fov_y_deg: f32,
     pub pan_deg: f32,
+    /// Centimetres walked forward a frame.
+    pub walk_cm: f32,
+    /// Where the lamp was set down (eye, target), or None: on the camera.
+    pub lamp: Option<[[f32; 3]; 2]>,
     pub gi: plugin_gi::GiSettings,
     /// Side of the flicker figure's blocks, pixels (1/40 of the width).
     pub flicker_block: u32,
@@ -129,11 +133,17 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
     let (mut receivers_per_frame, mut lit, mut seconds) = (Vec::new(), Vec::new(), (Vec::new(), Vec::new()));
     let (mut halves, mut half_errors, mut half_lit) = (Vec::new(), Vec::new(), Vec::new());
     let mut half_seconds = (Vec::new(), Vec::new());
+    // Forward along the first frame's view, level.
+    let walk = (start.camera.forward() * Vec3::new(1.0, 0.0, 1.0)).normalize_or_zero();
     for t in 0..n {
         let mut view = start.clone();
         // Turning right is a negative turn about +Y, about the eye.
         let turn = Quat::from_rotation_y(-(args.pan_deg * t as f32).to_radians());
         view.camera.rotation = (turn * start.camera.rotation).normalize();
+        view.camera.position += walk * (0.01 * args.walk_cm * t as f32);
+        if let Some((eye, target)) = args.pan_lamp {
+            view.headlamp.detach_looking_at(eye, target);
+        }
         let indirect = linear(target.render(gpu, &mut renderer, &view)?)?;
         let receivers = reference.receivers(gpu, &view, (w, h))?;
         let exact = reference.evaluate(&view, (w, h), &receivers, Some(&mask), patch);
@@ -178,6 +188,8 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
         forward: start.camera.forward().to_array(),
         fov_y_deg: start.camera.fov_y().unwrap_or(0.0).to_degrees(),
         pan_deg: args.pan_deg,
+        walk_cm: args.walk_cm,
+        lamp: args.pan_lamp.map(|(eye, target)| [eye.to_array(), target.to_array()]),
         gi: handle.settings(),
         flicker_block: block,
         reference: ReferenceFigures {
@@ -215,6 +227,17 @@ pub fn table(r: &PanReport) -> String {
         "headlamp bench --pan: {}, {}x{}, {} frames turning right {}° a frame, on {}",
         r.level, r.size[0], r.size[1], r.frames, r.pan_deg, r.adapter
     );
+    if r.walk_cm != 0.0 {
+        let _ = writeln!(s, "walking forward {} cm a frame", r.walk_cm);
+    }
+    match r.lamp {
+        Some([[x, y, z], [tx, ty, tz]]) => {
+            let _ = writeln!(s, "lamp set down at {x:.2},{y:.2},{z:.2} pointing at {tx:.2},{ty:.2},{tz:.2}");
+        }
+        None => {
+            let _ = writeln!(s, "lamp on the camera");
+        }
+    }
     let [x, y, z] = r.eye;
     let [fx, fy, fz] = r.forward;
     let _ = writeln!(s, "eye {x:.2},{y:.2},{z:.2} looking {fx:.2},{fy:.2},{fz:.2}, fov {:.1}°", r.fov_y_deg);
