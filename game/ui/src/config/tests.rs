@@ -45,6 +45,7 @@ fn changed() -> Config {
         resolution_scale: 0.3,
         interleave: 1,
         min_rows: 60,
+        history: 0.25,
     };
     Config {
         mouse_sensitivity: 1.37,
