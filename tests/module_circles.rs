@@ -88,6 +88,7 @@ each_member! {
     physics_has_no_import_circle: "engine/physics",
     audio_has_no_import_circle: "engine/audio",
     plugin_gi_has_no_import_circle: "plugin_gi",
+    gi_reference_has_no_import_circle: "plugin_gi/reference",
     game_has_no_import_circle: "game",
     game_ui_has_no_import_circle: "game/ui",
     headlamp_tests_has_no_import_circle: "tests",

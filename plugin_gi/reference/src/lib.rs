@@ -19,10 +19,12 @@
 
 mod lamp;
 mod occlusion;
+mod patch;
 mod texture;
 mod transport;
 mod world;
 
 pub use lamp::Lamp;
+pub use patch::{LitPatch, Patch};
 pub use transport::{polygon_factor, LitPatches, Receiver, NEAR_EDGES};
-pub use world::{subdivisions, LitPatch, Patch, World, DEFAULT_MAX_EDGE, SHADOW_OFFSET};
+pub use world::{subdivisions, World, DEFAULT_MAX_EDGE, SHADOW_OFFSET};

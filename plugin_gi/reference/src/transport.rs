@@ -16,7 +16,7 @@ use std::f64::consts::PI;
 use engine::glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-use crate::world::LitPatch;
+use crate::patch::LitPatch;
 
 /// The near field's radius, in patch edges (the `max_edge` the patches were cut with): the
 /// point form's error on a patch of size s at distance d goes as (s/d)², about 1/36 of a

@@ -10,6 +10,7 @@ use rayon::prelude::*;
 
 use crate::lamp::Lamp;
 use crate::occlusion::OcclusionMap;
+use crate::patch::{LitPatch, Patch};
 use crate::texture::{slot_uv, LinearTexture};
 use crate::transport::LitPatches;
 
@@ -29,32 +30,6 @@ struct Triangle {
     material: usize,
     /// Drawn from both sides (its material's `double_sided`).
     double_sided: bool,
-}
-
-/// One patch: a sub-triangle of a level triangle. Where it lies depends on the scene and the
-/// patch size only.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Patch {
-    /// Corners in the winding of their triangle.
-    pub corners: [Vec3; 3],
-    /// The centroid.
-    pub centre: Vec3,
-    /// The triangle's geometric unit normal, (b − a) × (c − a): its front.
-    pub normal: Vec3,
-    pub area: f32,
-    /// Which triangle of [`World`] it was cut from (meshes in order, then indices in order).
-    pub triangle: u32,
-}
-
-/// A patch the lamp lights: the side it is lit on and the flux it reflects.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LitPatch {
-    pub patch: Patch,
-    /// Unit normal of the lit side (the patch's normal, turned towards the lamp on a double-sided
-    /// material).
-    pub normal: Vec3,
-    /// Reflected flux Φ = ρ · I · max(0, n·l) · A / d² (W).
-    pub flux: Vec3,
 }
 
 /// The level's geometry and materials, ready to cut into patches and to cast shadow rays into.
