@@ -93,20 +93,44 @@ fn view_texel_node(t: vec2u, view: vec2u, flux_texel: vec2u) -> Node {
     return node;
 }
 
-// The 2×2, 4×4 and 8×8 blocks of view texels from `t`, merged as the pyramid merges.
-fn block2(t: vec2u, view: vec2u, id: vec2u) -> Node {
-    return merge(view_texel_node(t, view, id), view_texel_node(t + vec2u(1u, 0u), view, id),
-        view_texel_node(t + vec2u(0u, 1u), view, id), view_texel_node(t + vec2u(1u, 1u), view, id));
-}
-
-fn block4(t: vec2u, view: vec2u, id: vec2u) -> Node {
-    return merge(block2(t, view, id), block2(t + vec2u(2u, 0u), view, id), block2(t + vec2u(0u, 2u), view, id),
-        block2(t + vec2u(2u, 2u), view, id));
-}
-
-fn block8(t: vec2u, view: vec2u, id: vec2u) -> Node {
-    return merge(block4(t, view, id), block4(t + vec2u(4u, 0u), view, id), block4(t + vec2u(0u, 4u), view, id),
-        block4(t + vec2u(4u, 4u), view, id));
+// The k×k block of view texels from `t` as one light, in one pass (the pyramid's merge4 over
+// the block, nested, cost a CPU device more than the rest of the GI): flux and area sum,
+// position and normal are flux-weighted, the extent reaches the farthest corner of the lit
+// texels' bounding box plus the largest texel patch, and the block is coherent when its
+// normals agree (their flux-weighted mean is at least `cos_merge` long) and its box is within
+// `merge_distance` of the lamp distance.
+fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
+    var node: Node;
+    node.merged = 1u;
+    var weight = 0.0;
+    var lo = vec3f(1e30);
+    var hi = vec3f(-1e30);
+    var reach = 0.0;
+    for (var j = 0u; j < k * k; j++) {
+        let texel = view_texel_node(t + vec2u(j % k, j / k), view, id);
+        let w = luminance(texel.flux);
+        if w <= 0.0 {
+            continue;
+        }
+        node.flux += texel.flux;
+        node.area += texel.area;
+        node.position += texel.position * w;
+        node.normal += texel.normal * w;
+        weight += w;
+        lo = min(lo, texel.position);
+        hi = max(hi, texel.position);
+        reach = max(reach, texel.extent);
+    }
+    if weight <= 0.0 {
+        return Node();
+    }
+    node.position /= weight;
+    let agreement = length(node.normal) / weight;
+    node.normal = normalize(node.normal + vec3f(0.0, 0.0, 1e-12));
+    node.extent = length(max(node.position - lo, hi - node.position)) + reach;
+    let limit = params.merge_distance * length(node.position - globals.lamp_pos.xyz);
+    node.merged = select(0u, 1u, agreement >= params.cos_merge && length(hi - lo) <= limit);
+    return node;
 }
 
 // Texel `id` of the flux G-buffer: the block of lamp-view texels it stands for, every one of
@@ -119,15 +143,12 @@ fn texel_node(id: vec2u) -> Node {
     while k < 8u && any((view + k - 1u) / k != params.flux_size) {
         k *= 2u;
     }
-    let t = id * k;
     var node: Node;
-    switch k {
-        case 1u: { node = view_texel_node(t, view, id); }
-        case 2u: { node = block2(t, view, id); }
-        case 4u: { node = block4(t, view, id); }
-        default: { node = block8(t, view, id); }
+    if k == 1u {
+        node = view_texel_node(id, view, id);
+    } else {
+        node = block_node(id * k, k, view, id);
     }
-    // merge() leaves no surface where nothing reflects; the views show zero there.
     let omega = texel_solid_angle(id, params.flux_size, params.lamp_tan);
     textureStore(flux_out, vec2i(id), vec4f(node.flux, 1.0));
     // The flux view: Φ per unit lamp solid angle relative to the lamp power, i.e. ρ·T(ω).
