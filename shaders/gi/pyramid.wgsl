@@ -95,9 +95,8 @@ fn view_texel_node(t: vec2u, view: vec2u, flux_texel: vec2u) -> Node {
 
 // The k×k block of view texels from `t` as one light, in one pass (the pyramid's merge4 over
 // the block, nested, cost a CPU device more than the rest of the GI): flux and area sum,
-// position and normal are flux-weighted, the extent reaches the farthest corner of the lit
-// texels' bounding box plus the largest texel patch, and the block is coherent when its
-// normals agree (their flux-weighted mean is at least `cos_merge` long) and its box is within
+// position and normal are flux-weighted, and the block is coherent when its normals agree
+// (their flux-weighted mean is at least `cos_merge` long) and its box is within
 // `merge_distance` of the lamp distance.
 fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     var node: Node;
@@ -106,8 +105,15 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     var lo = vec3f(1e30);
     var hi = vec3f(-1e30);
     var reach = 0.0;
-    for (var j = 0u; j < k * k; j++) {
-        let texel = view_texel_node(t + vec2u(j % k, j / k), view, id);
+    // At most 4×4 of them: an 8×8 block (a CPU preset's third halving) takes every other
+    // texel each way, each standing for its 2×2.
+    let step = max(k / 4u, 1u);
+    let n = k / step;
+    for (var j = 0u; j < n * n; j++) {
+        var texel = view_texel_node(t + vec2u(j % n, j / n) * step, view, id);
+        let share = f32(step * step);
+        texel.flux *= share;
+        texel.area *= share;
         let w = luminance(texel.flux);
         if w <= 0.0 {
             continue;
@@ -127,9 +133,13 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     node.position /= weight;
     let agreement = length(node.normal) / weight;
     node.normal = normalize(node.normal + vec3f(0.0, 0.0, 1e-12));
-    node.extent = length(max(node.position - lo, hi - node.position)) + reach;
     let limit = params.merge_distance * length(node.position - globals.lamp_pos.xyz);
     node.merged = select(0u, 1u, agreement >= params.cos_merge && length(hi - lo) <= limit);
+    // A coherent block is a patch of its area, sized as one texel is (the disc of that area),
+    // so the cuts split it as they split the texel that used to stand for it; an incoherent one
+    // reaches as far as its farthest texel.
+    let bound = length(max(node.position - lo, hi - node.position)) + reach * f32(step);
+    node.extent = select(bound, sqrt(node.area / PI), node.merged == 1u);
     return node;
 }
 
