@@ -162,6 +162,7 @@ pub const GPU_ONLY: &[(&str, &str)] = &[
     ("CutLight", "a function's value, never in a buffer"),
     ("TileBounds", "a function's value, never in a buffer"),
     ("Walk", "a function's value, never in a buffer"),
+    ("SamplePlace", "a function's value, never in a buffer"),
     ("DotOut", "stage IO between vertex and fragment shaders"),
 ];
 

@@ -218,6 +218,30 @@ fn receiver_texel(q: vec2u, view: vec2u, indirect: vec2u) -> vec2i {
     return vec2i((vec2f(q) + 0.5) * vec2f(view) / vec2f(indirect));
 }
 
+// Where pixel centre p of a `view`-sized frame lies among the samples of an `indirect`-sized
+// target: `base` the sample before it on each axis, `f` its place towards the next (0 at
+// base, 1 at the next; outside that range beyond the target's edge samples). Taken from
+// where the gather evaluated each sample (`receiver_texel`) rather than from the ratio of the
+// sizes: at a ratio like 4/3 the two differ by up to half a pixel.
+struct SamplePlace {
+    base: vec2i,
+    f: vec2f,
+};
+
+fn sample_place(p: vec2f, view: vec2u, indirect: vec2u) -> SamplePlace {
+    let low = vec2i(indirect);
+    var base = max(min(vec2i(floor(p * vec2f(indirect) / vec2f(view) - 0.5)), low - 2), vec2i(0));
+    base -= vec2i((p < sample_centre(base, view, indirect)) & (base > vec2i(0)));
+    base += vec2i((p > sample_centre(base + 1, view, indirect)) & (base + 2 < low));
+    let c0 = sample_centre(base, view, indirect);
+    return SamplePlace(base, (p - c0) / max(sample_centre(base + 1, view, indirect) - c0, vec2f(1e-6)));
+}
+
+// Where the gather evaluated sample s (s ≥ 0) of an `indirect`-sized target, in pixels.
+fn sample_centre(s: vec2i, view: vec2u, indirect: vec2u) -> vec2f {
+    return vec2f(receiver_texel(vec2u(s), view, indirect)) + 0.5;
+}
+
 fn luminance(c: vec3f) -> f32 {
     return dot(c, vec3f(0.2126, 0.7152, 0.0722));
 }

@@ -18,11 +18,6 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenOut {
     return fullscreen_vertex(index);
 }
 
-// Where the gather evaluated sample s of the irradiance target, in pixels of the view.
-fn sample_centre(s: vec2i, full: vec2u) -> vec2f {
-    return vec2f(receiver_texel(vec2u(s), full, params.indirect_size)) + 0.5;
-}
-
 // L_i at pixel p; w = 0 where there is no geometry.
 fn indirect_radiance(p: vec2i) -> vec4f {
     let normal = textureLoad(gbuffer_normal, p, 0);
@@ -32,15 +27,10 @@ fn indirect_radiance(p: vec2i) -> vec4f {
     let depth = textureLoad(gbuffer_position, p, 0).w;
     let full = textureDimensions(gbuffer_normal);
     let low = vec2f(params.indirect_size);
-    // The two samples on either side of p along each axis, and p's place between them, taken
-    // from where the gather evaluated each sample (the texel receiver_texel names) rather than
-    // from the ratio of the sizes: at a ratio like 4/3 the two differ by up to half a pixel.
-    let centre = vec2f(p) + 0.5;
-    var base = max(min(vec2i(floor(centre * low / vec2f(full) - 0.5)), vec2i(low) - 2), vec2i(0));
-    base -= vec2i((centre < sample_centre(base, full)) & (base > vec2i(0)));
-    base += vec2i((centre > sample_centre(base + 1, full)) & (base + 2 < vec2i(low)));
-    let c0 = sample_centre(base, full);
-    let f = clamp((centre - c0) / max(sample_centre(base + 1, full) - c0, vec2f(1e-6)), vec2f(0.0), vec2f(1.0));
+    // The two samples on either side of p along each axis, and p's place between them.
+    let place = sample_place(vec2f(p) + 0.5, full, params.indirect_size);
+    let base = place.base;
+    let f = clamp(place.f, vec2f(0.0), vec2f(1.0));
     var sum = vec3f(0.0);
     var total = 0.0;
     var nearest = vec3f(0.0);

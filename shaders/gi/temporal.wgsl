@@ -36,11 +36,6 @@ fn same_surface(packed: f32, depth: f32, n: vec3f) -> bool {
         && dot(receiver_normal(packed), n) > NORMAL_COS;
 }
 
-// Where the gather evaluated sample s of the irradiance target, in pixels of the view.
-fn sample_centre(s: vec2i, full: vec2u, low: vec2i) -> vec2f {
-    return vec2f(receiver_texel(vec2u(max(s, vec2i(0))), full, vec2u(low))) + 0.5;
-}
-
 // Last frame's irradiance at world point x (normal n), or w = 0 where it had none there.
 fn reprojected(x: vec3f, n: vec3f, full: vec2f, low: vec2i) -> vec4f {
     let clip = temporal.previous_view_proj * vec4f(x, 1.0);
@@ -49,14 +44,11 @@ fn reprojected(x: vec3f, n: vec3f, full: vec2f, low: vec2i) -> vec4f {
     }
     let ndc = clip.xy / clip.w;
     let pixel = vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * full;
-    // The samples about it, and its place between them, from where the gather evaluated each
-    // sample (as the composite finds them), so a still view takes each sample's own history.
-    let fi = vec2u(full);
-    var base = max(min(vec2i(floor(pixel * vec2f(low) / full - 0.5)), low - 2), vec2i(0));
-    base -= vec2i((pixel < sample_centre(base, fi, low)) & (base > vec2i(0)));
-    base += vec2i((pixel > sample_centre(base + 1, fi, low)) & (base + 2 < low));
-    let c0 = sample_centre(base, fi, low);
-    var f = (pixel - c0) / max(sample_centre(base + 1, fi, low) - c0, vec2f(1e-6));
+    // The samples about it, and its place between them, as the composite finds them, so a
+    // still view takes each sample's own history.
+    let place = sample_place(pixel, vec2u(full), vec2u(low));
+    let base = place.base;
+    var f = place.f;
     // On a sample to rounding (a still view): that sample alone, so nothing drifts.
     f = select(f, round(f), abs(f - round(f)) < vec2f(1e-3));
     if any(f < vec2f(-0.5)) || any(f > vec2f(1.5)) {
