@@ -44,7 +44,9 @@ engine::gpu_struct! {
         pub source: u32,
         /// 2: the gather's receivers share the cut in a 2×2 pattern; 1: each evaluates all of it.
         pub interleave: u32,
-        pub pad: [u32; 3],
+        /// The side in lamp-view texels of one flux G-buffer texel (a power of two).
+        pub flux_block: u32,
+        pub pad: [u32; 2],
         /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin,
         /// its forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a
         /// texel's corner rays follow from its index: the reference's footprints in its near

@@ -13,9 +13,9 @@
 // follows from its place in the tree (see `walk`). The few tiles whose cut fills up are listed
 // and walked again by a second, indirect dispatch (`retry_full_tiles`), packed side by side.
 //
-// Per tile, `cuts` holds the counts (evaluated, facing away), the tile's centre
+// Per tile, `cuts` holds the counts (class slots, facing away, near), the tile's centre
 // (the stored positions are relative to it), then the evaluated lights, one vec4 each (see
-// gi_common.wgsl). The tile at the centre of the view also writes its whole cut, those facing
+// gi_common.wgsl): the interleaved classes from the start, the near list from the end. The tile at the centre of the view also writes its whole cut, those facing
 // away included, to `centre_lights` for the `lights` view.
 #include "common.wgsl"
 #include "gi_common.wgsl"
@@ -48,7 +48,15 @@ struct TileBounds {
     sphere: vec4f,
     plane: vec4f,
     count: u32,
+    // The same sphere for each 4×4 quarter of the tile (radius < 0 where it has none), for
+    // the near list, which a sphere around the whole tile would fill with lights that lie
+    // between its surfaces (across a fold or a depth step) but near none of them.
+    quarters: array<vec4f, 4>,
 };
+
+fn quarter(i: u32) -> u32 {
+    return u32((i % CUT_TILE) >= CUT_TILE / 2u) + 2u * u32((i / CUT_TILE) >= CUT_TILE / 2u);
+}
 
 fn tile_bounds(origin: vec2u) -> TileBounds {
     var b: TileBounds;
@@ -56,17 +64,23 @@ fn tile_bounds(origin: vec2u) -> TileBounds {
     var centre = vec3f(0.0);
     var normal = vec3f(0.0);
     var count = 0u;
+    var quarters: array<vec4f, 4>;
     for (var i = 0u; i < CUT_TILE * CUT_TILE; i++) {
         let q = origin + vec2u(i % CUT_TILE, i / CUT_TILE);
         if all(q < params.indirect_size) {
             let g = receiver_texel(q, view, params.indirect_size);
             let n = textureLoad(gbuffer_normal, g, 0);
             if n.w > 0.0 {
-                centre += textureLoad(gbuffer_position, g, 0).xyz;
+                let x = textureLoad(gbuffer_position, g, 0).xyz;
+                centre += x;
                 normal += n.xyz;
                 count++;
+                quarters[quarter(i)] += vec4f(x, 1.0);
             }
         }
+    }
+    for (var k = 0u; k < 4u; k++) {
+        b.quarters[k] = vec4f(quarters[k].xyz / max(quarters[k].w, 1.0), select(-1.0, 0.0, quarters[k].w > 0.0));
     }
     b.count = count;
     if count == 0u {
@@ -81,8 +95,11 @@ fn tile_bounds(origin: vec2u) -> TileBounds {
         if all(q < params.indirect_size) {
             let g = receiver_texel(q, view, params.indirect_size);
             if textureLoad(gbuffer_normal, g, 0).w > 0.0 {
-                let v = textureLoad(gbuffer_position, g, 0).xyz - centre;
+                let x = textureLoad(gbuffer_position, g, 0).xyz;
+                let v = x - centre;
                 radius = max(radius, length(v));
+                let k = quarter(i);
+                b.quarters[k].w = max(b.quarters[k].w, length(x - b.quarters[k].xyz));
                 thickness = max(thickness, abs(dot(v, normal)));
             }
         }
@@ -97,6 +114,14 @@ const SKIP: u32 = 0u;
 const TAKE: u32 = 1u;
 const TAKE_AWAY: u32 = 2u;
 const SPLIT: u32 = 3u;
+// Taken although it is large against its distance, since it is of the finest level the cut
+// may take, at an angle to the tile's surface (or spanning a fold), and all but touching one
+// of the tile's quarters: a light of the tile's near list (see `walk`).
+const TAKE_NEAR: u32 = 4u;
+// Lights within this cosine of the tile's plane stay in the interleaved classes however close:
+// next to a receiver on (nearly) their own plane they give it (nearly) nothing, and a tile's
+// own surface would otherwise fill its near list.
+const NEAR_PLANE_COS: f32 = 0.9;
 
 fn decide(node: Node, level: u32, floor: u32, split_ratio: f32, b: TileBounds) -> u32 {
     if luminance(node.flux) <= 0.0 {
@@ -116,10 +141,27 @@ fn decide(node: Node, level: u32, floor: u32, split_ratio: f32, b: TileBounds) -
     let gap = max(dist - radius, 0.0);
     // A light that spans a fold or a depth step is split sooner.
     let ratio = select(0.5 * split_ratio, split_ratio, node.merged == 1u);
-    if level > floor && node.extent > ratio * gap {
-        return SPLIT;
+    if node.extent > ratio * gap {
+        if level > floor {
+            return SPLIT;
+        }
+        // (Twice the ratio: the lights within about one radius of a quarter. Those a little
+        // farther off measured no better in the near list, at a third more of them.)
+        let at_angle = node.merged == 0u || dot(node.normal, b.plane.xyz) < NEAR_PLANE_COS;
+        return select(TAKE, TAKE_NEAR, at_angle && near_a_quarter(node, 2.0 * ratio, b));
     }
     return TAKE;
+}
+
+// Whether the light is as large against its distance to one of the tile's quarters as a
+// light the cut would split at `ratio`.
+fn near_a_quarter(node: Node, ratio: f32, b: TileBounds) -> bool {
+    var near = false;
+    for (var k = 0u; k < 4u; k++) {
+        let q = b.quarters[k];
+        near = near || (q.w >= 0.0 && node.extent > ratio * max(length(q.xyz - node.position) - q.w, 0.0));
+    }
+    return near;
 }
 
 // The counts of one walk: lights taken, taken facing away, and 1 when a light asked to be
@@ -132,6 +174,8 @@ struct Walk {
     classes: vec4u,
     // When filled: the share of the tree walked by then (see `walked_share`).
     share: f32,
+    // Lights stored in the near list.
+    near: u32,
 };
 
 // The share of the quadtree a depth-first walk has passed when it is at `place` of `level`:
@@ -155,9 +199,16 @@ fn walked_share(level: u32, place: vec2u) -> f32 {
 // among its siblings (x and y parity), so the four children of a split fall into the four
 // classes and a light keeps its class from frame to frame whatever else the cut gains or
 // loses; it is stored where index mod 4 names its class (`class_slot`). A class that has had
-// half the room already (not seen in practice) takes the next light of another.
-fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool, room: u32) -> Walk {
-    var w = Walk(0u, 0u, 0u, vec4u(0u), 1.0);
+// its share of the room already (not seen in practice) takes the next light of another.
+//
+// The lights it takes that are still large against their distance to the tile (of the finest
+// level it may take, see TAKE_NEAR) go to the tile's near list instead, stored from the far
+// end of its room down: every receiver sums those itself (gather.wgsl), since next to a light
+// its irradiance changes faster across the 2×2 interleave than a neighbour's value can stand
+// for. When the room between the two runs short, which it does not in practice, a near light
+// joins its class.
+fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) -> Walk {
+    var w = Walk(0u, 0u, 0u, vec4u(0u), 1.0, 0u);
     let top = PYRAMID_LEVELS - 1u;
     let top_level = table.levels[top];
     // The cut's size if nothing more were split: a split adds three.
@@ -179,21 +230,29 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool, ro
                 }
                 planned += 3u;
                 descend = true;
-            } else if action == TAKE || action == TAKE_AWAY {
+            } else if action != SKIP {
                 if centre && w.taken + w.away < arrayLength(&centre_lights) {
                     centre_lights[w.taken + w.away] = ReflectionLight(node.position, node.area, node.normal, level,
                         node.flux, select(0.0, 1.0, action == TAKE_AWAY));
                 }
-                if action == TAKE {
-                    var kind = (place.x & 1u) + 2u * (place.y & 1u);
-                    if w.classes[kind] >= room {
-                        kind = fewest(w.classes);
-                    }
-                    cuts[class_slot(base, kind, w.classes[kind])] = pack_cut_light(node, b.sphere.xyz);
-                    w.classes[kind] += 1u;
-                    w.taken++;
-                } else {
+                if action == TAKE_AWAY {
                     w.away++;
+                } else {
+                    let light = pack_cut_light(node, b.sphere.xyz);
+                    let room = tile_stride() - 2u;
+                    let classes = 4u * max(max(w.classes.x, w.classes.y), max(w.classes.z, w.classes.w));
+                    if action == TAKE_NEAR && classes + w.near + 1u <= room {
+                        cuts[near_slot(base, w.near)] = light;
+                        w.near++;
+                    } else {
+                        var kind = (place.x & 1u) + 2u * (place.y & 1u);
+                        if w.classes[kind] >= (room - w.near) / 4u {
+                            kind = fewest(w.classes);
+                        }
+                        cuts[class_slot(base, kind, w.classes[kind])] = light;
+                        w.classes[kind] += 1u;
+                    }
+                    w.taken++;
                 }
             } else {
                 planned -= 1u;
@@ -235,6 +294,11 @@ fn class_slot(base: u32, c: u32, k: u32) -> u32 {
     return base + 2u + 4u * k + c;
 }
 
+// Where the k-th light of the near list of the cut at `base` is stored.
+fn near_slot(base: u32, k: u32) -> u32 {
+    return base + tile_stride() - 1u - k;
+}
+
 fn fewest(classes: vec4u) -> u32 {
     var c = 0u;
     for (var i = 1u; i < 4u; i++) {
@@ -256,11 +320,6 @@ fn slot_tile(slot: u32) -> vec3u {
 fn tile_stride() -> u32 {
     let top_level = table.levels[PYRAMID_LEVELS - 1u];
     return cut_stride(top_level.y * top_level.z);
-}
-
-// Slots per class: a quarter of the room, which is twice the cut's most lights.
-fn class_room() -> u32 {
-    return (tile_stride() - 2u) / 4u;
 }
 
 fn is_centre_tile(tile: vec2u) -> bool {
@@ -285,7 +344,7 @@ fn finish_cut(base: u32, w: Walk, tile: vec2u) {
             cuts[class_slot(base, c, k)] = vec4u(0u);
         }
     }
-    cuts[base] = vec4u(4u * per_class, w.away, 0u, 0u);
+    cuts[base] = vec4u(4u * per_class, w.away, w.near, 0u);
     if is_centre_tile(tile) {
         stats.vertex_count = 6u;
         stats.instance_count = min(w.taken + w.away, arrayLength(&centre_lights));
@@ -337,9 +396,9 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     let base = slot * tile_stride();
     let b = tile_bounds(tile * CUT_TILE);
     cuts[base + 1u] = vec4u(bitcast<vec3u>(b.sphere.xyz), 0u);
-    var w = Walk(0u, 0u, 0u, vec4u(0u), 1.0);
+    var w = Walk(0u, 0u, 0u, vec4u(0u), 1.0, 0u);
     if b.count > 0u {
-        w = walk(b, params.min_level, params.split_ratio, base, is_centre_tile(tile), class_room());
+        w = walk(b, params.min_level, params.split_ratio, base, is_centre_tile(tile));
         // (The top level alone always fits.)
         if w.filled == 1u && params.min_level < PYRAMID_LEVELS - 1u {
             let i = atomicAdd(&retry.count, 1u);
@@ -373,7 +432,7 @@ fn retry_full_tiles(@builtin(global_invocation_id) id: vec3u) {
     var ratio = bitcast<f32>(entry.y);
     var w: Walk;
     loop {
-        w = walk(b, floor, ratio, base, is_centre_tile(tile), class_room());
+        w = walk(b, floor, ratio, base, is_centre_tile(tile));
         if w.filled == 0u || floor >= top {
             break;
         }

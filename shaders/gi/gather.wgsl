@@ -1,12 +1,13 @@
 // GI gather pass: the irradiance of each receiver (a pixel of the indirect target) from the
 // reflection lights of its 8×8 tile's cut through the flux pyramid (built by cuts.wgsl).
-// The receivers sum E = Φ/π · cos · cos / (d² + A/π) over the cut, interleaved: the cut's
-// lights fall into four classes (cuts.wgsl stores class c at the slots whose index mod 4 is
-// c) and each receiver of a 2×2 pattern evaluates one class itself and takes the other three
-// from its neighbours with that class (a tent filter over its 3×3 neighbourhood) where they
-// lie on its surface. A receiver with no such neighbour for a class, at an edge or a corner,
-// evaluates that class itself. Every light is counted once per receiver either way; smooth
-// surfaces cost a quarter.
+// The receivers sum each light's irradiance as a disc of its area (disc_irradiance) over the
+// cut, interleaved: the cut's lights fall into four classes (cuts.wgsl stores class c at the
+// slots whose index mod 4 is c) and each receiver of a 2×2 pattern evaluates one class itself
+// and takes the other three from its neighbours with that class (a tent filter over its 3×3
+// neighbourhood) where they lie on its surface. A receiver with no such neighbour for a class,
+// at an edge or a corner, evaluates that class itself. The cut's near list (lights next to the
+// tile's receivers, see cuts.wgsl) every receiver sums whole. Every light is counted once per
+// receiver either way; smooth surfaces cost a quarter.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -26,8 +27,9 @@
 var<workgroup> receivers: array<vec4f, 64>;
 // Each receiver's irradiance from its own class of lights, for its neighbours.
 var<workgroup> partials: array<vec3f, 64>;
-// The number of lights this tile evaluates (its cut less those facing away).
-var<workgroup> cut_size: u32;
+// The number of class slots this tile evaluates (its cut less those facing away and the near
+// list, padded), and the lights of its near list.
+var<workgroup> cut_size: vec2u;
 
 // Whether receiver b (a neighbour in the tile) lies on the surface of the receiver at x with
 // normal n, seen from distance d: near, on its plane, facing the same way. Its irradiance
@@ -69,7 +71,19 @@ fn cut_irradiance(base: u32, centre: vec3f, first: u32, step: u32, lights: u32, 
     var e = vec3f(0.0);
     for (var i = first; i < lights; i += step) {
         let l = unpack_cut_light(cuts[base + 2u + i], centre);
-        e += patch_irradiance(l.flux, l.area, l.position, l.normal, x, n);
+        e += disc_irradiance(l.flux, l.area, l.position, l.normal, x, n);
+    }
+    return e;
+}
+
+// Irradiance at x (normal n) from the cut's near list (stored from the end of its room, see
+// cuts.wgsl), every light of it: these lie close to some receiver of the tile, where their
+// light changes too fast across the 2×2 pattern for a neighbour's value to stand for this one's.
+fn near_irradiance(base: u32, stride: u32, centre: vec3f, count: u32, x: vec3f, n: vec3f) -> vec3f {
+    var e = vec3f(0.0);
+    for (var k = 0u; k < count; k++) {
+        let l = unpack_cut_light(cuts[base + stride - 1u - k], centre);
+        e += disc_irradiance(l.flux, l.area, l.position, l.normal, x, n);
     }
     return e;
 }
@@ -98,12 +112,14 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     receivers[li] = vec4f(x, bitcast<f32>(select(NO_NORMAL, pack_normal(n.xyz), valid)));
     let tiles = (params.indirect_size + CUT_TILE - 1u) / CUT_TILE;
     let top_level = table.levels[PYRAMID_LEVELS - 1u];
-    let base = (group.y * tiles.x + group.x) * cut_stride(top_level.y * top_level.z);
+    let stride = cut_stride(top_level.y * top_level.z);
+    let base = (group.y * tiles.x + group.x) * stride;
     if li == 0u {
-        cut_size = cuts[base].x;
+        cut_size = cuts[base].xz;
     }
     // (Its barrier also makes every receiver visible to its neighbours.)
-    let lights = workgroupUniformLoad(&cut_size);
+    let counts = workgroupUniformLoad(&cut_size);
+    let lights = counts.x;
     let centre = bitcast<vec3f>(cuts[base + 1u].xyz);
     var e = vec3f(0.0);
     // Interleaving: this receiver's own class, and the classes it must evaluate itself too
@@ -111,7 +127,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     let p = vec2i(local.xy);
     let interleaved = params.interleave == 2u;
     let own_class = select(0u, light_class(p), interleaved);
-    let stride = select(1u, 4u, interleaved);
+    let step = select(1u, 4u, interleaved);
     var weights = vec4f(0.0);
     var similar = 0u;
     var lacking = 0u;
@@ -129,18 +145,20 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
         }
     }
     var own = vec3f(0.0);
-    if lights > 0u {
+    if lights + counts.y > 0u {
         // Each receiver reads its lights from the cut itself: copying the cut through
         // workgroup memory in batches cost a CPU device more (its loads are per lane either
         // way) than the barriers saved.
         if valid {
-            own = cut_irradiance(base, centre, own_class, stride, lights, x, n.xyz);
+            own = cut_irradiance(base, centre, own_class, step, lights, x, n.xyz);
             // The classes no neighbour on this surface has, evaluated here.
             for (var c = 0u; c < 4u; c++) {
                 if ((lacking >> c) & 1u) != 0u {
                     e += cut_irradiance(base, centre, c, 4u, lights, x, n.xyz);
                 }
             }
+            // The near list, all of it, kept to this receiver.
+            e += near_irradiance(base, stride, centre, counts.y, x, n.xyz);
         }
         // The other classes from the neighbours on this surface, tent-weighted per class.
         partials[li] = own;

@@ -48,9 +48,10 @@ struct GiParams {
     source: u32,
     // 2: receivers evaluate the cut interleaved in a 2×2 pattern; 1: each evaluates all of it.
     interleave: u32,
+    // The side in lamp-view texels of one flux G-buffer texel (a power of two).
+    flux_block: u32,
     pad0: u32,
     pad1: u32,
-    pad2: u32,
     // The frame the lamp view was rendered from: origin, forward axis, and right and up axes
     // scaled by lamp_tan, so a texel's corner rays follow from its index.
     view_origin: vec4f,
@@ -246,16 +247,38 @@ fn luminance(c: vec3f) -> f32 {
     return dot(c, vec3f(0.2126, 0.7152, 0.0722));
 }
 
-// Irradiance at x (normal n_x) from a Lambertian patch at p (normal n_r, area A) of flux Φ:
-// E = Φ/π · max(0, n_r·ω) · max(0, n_x·(−ω)) / (d² + A/π), ω from the patch to x. Far away it is
-// the point light's Φ/π·cos·cos/d²; close by it is the disc's form factor, which stays finite,
-// so nothing has to be clamped.
-fn patch_irradiance(flux: vec3f, area: f32, p: vec3f, n_r: vec3f, x: vec3f, n_x: vec3f) -> vec3f {
+// Irradiance at x (normal n_x) from a Lambertian disc of flux Φ and area A = πa², centred at p
+// with normal n_r: exact wherever the disc lies wholly above x's plane, however close. It is
+// the disc's vector irradiance (the closed forms of the form factors from a point parallel
+// and perpendicular to a disc) dotted with n_x:
+//   E = Φ/(πa²) · [F∥ · n_x·(−n_r) + F⊥ · n_x·(−ŝ)],
+//   F∥ = ½(1 − t/R), F⊥ = h/(2|s|) · (q/R − 1),
+// h = n_r·(x − p) the height above the disc's plane, s the rest of x − p, q = |x − p|² + a²,
+// t = q − 2a², R = √(q² − 4a²|s|²); written below so that no term cancels in f32, whether the
+// disc is small and far or x is just above it. Far away it is the point light's
+// Φ/π·cos·cos/d²; close by it stays finite, so nothing has to be clamped. (The form it replaces,
+// Φ/π·cos·cos/(d² + A/π) from the centre, was 8–20 % off at the 2–5 radii where the cuts take
+// most lights, and a third off next to a fold.) Where x's plane cuts the disc the dot product counts the part below it
+// negatively; that happens only where the disc reaches within its radius of that plane (next
+// to a fold), and the result is held at 0 or above.
+fn disc_irradiance(flux: vec3f, area: f32, p: vec3f, n_r: vec3f, x: vec3f, n_x: vec3f) -> vec3f {
     let v = x - p;
-    let d2 = dot(v, v);
-    let w = v * inverseSqrt(max(d2, 1e-20));
-    let g = max(0.0, dot(n_r, w)) * max(0.0, dot(n_x, -w)) / (d2 + area / PI + 1e-20);
-    return flux * (g / PI);
+    let h = dot(v, n_r);
+    if h <= 0.0 {
+        return vec3f(0.0);
+    }
+    let a2 = area / PI;
+    let s = v - h * n_r;
+    let s2 = dot(s, s);
+    let q = s2 + h * h + a2;
+    let root = max(sqrt(max(q * q - 4.0 * a2 * s2, 0.0)), 1e-6 * q);
+    let t = q - 2.0 * a2;
+    // 1 − t/R = (R − t)/R, and R − t = 4a²h²/(R + t) where t > 0 (no cancellation either way).
+    let parallel = select((root - t) / a2, 4.0 * h * h / (root + t), t > 0.0) / (2.0 * root);
+    // (q/R − 1) / |s| = 4a²|s| / (R(q + R)).
+    let across = 2.0 * h / (root * (q + root));
+    let e = (parallel * dot(n_x, -n_r) - across * dot(n_x, s)) / PI;
+    return flux * max(e, 0.0);
 }
 
 // The merge filter: one node from four children (those without flux count for nothing).

@@ -149,10 +149,7 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
 fn texel_node(id: vec2u) -> Node {
     let view = textureDimensions(gbuffer_normal);
     // The block's side: the power of two the view was halved by (flux_size = ⌈view / k⌉).
-    var k = 1u;
-    while k < 8u && any((view + k - 1u) / k != params.flux_size) {
-        k *= 2u;
-    }
+    let k = params.flux_block;
     var node: Node;
     if k == 1u {
         node = view_texel_node(id, view, id);

@@ -1,8 +1,8 @@
 // GI reference: the exact one bounce of the lamp's light. Every texel of the full-resolution
 // flux G-buffer is a sender, with no merging, no cutoff and no clamp: each is the small
-// surface patch it is (area A = Ω·d²/cos θ seen from the lamp), whose patch-to-point form
-// factor stays finite next to it, E = Φ/π · cos · cos / (d² + A/π). As the lamp view's
-// resolution rises the patches shrink and the sum converges to the integral. The indirect
+// surface patch it is (area A = Ω·d²/cos θ seen from the lamp), taken as the disc of that
+// area (disc_irradiance, exact for a disc however close, as the gather's lights). As the lamp
+// view's resolution rises the patches shrink and the sum converges to the integral. The indirect
 // radiance ρ/π · E of each camera pixel is summed over all of them: O(pixels × texels), for
 // tests and `bench` at small sizes. The flux is pyramid.wgsl's, so it holds the same sources:
 // the lamp and, attached, the camera flash — but computed here for every texel of the lamp
@@ -51,7 +51,7 @@ struct Sender {
 };
 
 // Within this many patch radii of a receiver, a sender's light is integrated over its texel's
-// footprint (quad_irradiance) rather than taken in the patch form from its centre: next to a
+// footprint (quad_irradiance) rather than taken as a disc about its centre: next to a
 // sender (where walls meet) the centre form depends on where the texel grid happens to fall
 // and converges slowly; farther away its error falls as (size / distance)².
 const NEAR_RADII: f32 = 8.0;
@@ -77,7 +77,7 @@ fn texel_footprint(t: vec2u, size: vec2u, p: vec3f, n: vec3f) -> array<vec3f, 4>
 // Irradiance at x (normal n_x) from a Lambertian quad q (normal n_r) that spreads flux Φ evenly:
 // E = Φ/A · F, F the point-to-polygon form factor of the quad's part above x's plane
 // (Lambert's formula, F = 1/2π · Σ over edges of the angle they subtend times n_x · their
-// plane's normal). Exact however close x lies, where patch_irradiance is not.
+// plane's normal). Exact however close x lies, even where x's plane cuts the patch.
 fn quad_irradiance(flux: vec3f, q: array<vec3f, 4>, n_r: vec3f, x: vec3f, n_x: vec3f) -> vec3f {
     let area = 0.5 * length(cross(q[2] - q[0], q[3] - q[1]));
     // A receiver (all but) on the patch's plane gets nothing; the test is against a hundredth
@@ -123,7 +123,7 @@ var<workgroup> tile: array<Sender, 64>;
 // Each sender's footprint, for receivers in its near field.
 var<workgroup> footprints: array<array<vec3f, 4>, 64>;
 
-// For the senders marked in `near`: their footprint's irradiance at x minus the patch form
+// For the senders marked in `near`: their footprint's irradiance at x minus the disc's
 // already summed.
 fn near_field_correction(near: vec2u, x: vec3f, n: vec3f) -> vec3f {
     var e = vec3f(0.0);
@@ -134,7 +134,7 @@ fn near_field_correction(near: vec2u, x: vec3f, n: vec3f) -> vec3f {
             bits &= bits - 1u;
             let s = tile[i];
             e += quad_irradiance(s.flux, footprints[i], s.normal, x, n)
-                - patch_irradiance(s.flux, s.area, s.position, s.normal, x, n);
+                - disc_irradiance(s.flux, s.area, s.position, s.normal, x, n);
         }
     }
     return e;
@@ -187,7 +187,7 @@ fn main(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_inde
             for (var i = 0u; i < TILE; i++) {
                 let s = tile[i];
                 if s.lit > 0.0 {
-                    e += patch_irradiance(s.flux, s.area, s.position, s.normal, x, normal.xyz);
+                    e += disc_irradiance(s.flux, s.area, s.position, s.normal, x, normal.xyz);
                     let d = x - s.position;
                     if dot(d, d) < NEAR_RADII * NEAR_RADII * s.area / PI {
                         near[i / 32u] |= 1u << (i % 32u);

@@ -2,7 +2,7 @@
 // model probe (ViewState::view_model_probe), for a surface facing each world axis: the ambient
 // cube `view_model.irradiance` the engine's view-model pass reads (view_model.wgsl). It sums
 // one level of the flux pyramid, whose nodes share out every lamp-view texel's flux once, each
-// node a Lambertian patch (patch_irradiance, as the gather's lights). No visibility, as the
+// node a Lambertian disc (disc_irradiance, as the gather's lights). No visibility, as the
 // gather's. One workgroup.
 #include "common.wgsl"
 #include "gi_common.wgsl"
@@ -31,7 +31,7 @@ var<workgroup> sum_pz: array<vec3f, THREADS>;
 var<workgroup> sum_nz: array<vec3f, THREADS>;
 
 fn node_irradiance(node: Node, x: vec3f, n: vec3f) -> vec3f {
-    return patch_irradiance(node.flux, node.area, node.position, node.normal, x, n);
+    return disc_irradiance(node.flux, node.area, node.position, node.normal, x, n);
 }
 
 @compute @workgroup_size(64)
