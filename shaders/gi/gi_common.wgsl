@@ -267,17 +267,18 @@ fn disc_irradiance(flux: vec3f, area: f32, p: vec3f, n_r: vec3f, x: vec3f, n_x: 
     if h <= 0.0 {
         return vec3f(0.0);
     }
-    let a2 = area / PI;
+    let a2 = area * (1.0 / PI);
     let s = v - h * n_r;
     let s2 = dot(s, s);
     let q = s2 + h * h + a2;
     let root = max(sqrt(max(q * q - 4.0 * a2 * s2, 0.0)), 1e-6 * q);
     let t = q - 2.0 * a2;
-    // 1 − t/R = (R − t)/R, and R − t = 4a²h²/(R + t) where t > 0 (no cancellation either way).
-    let parallel = select((root - t) / a2, 4.0 * h * h / (root + t), t > 0.0) / (2.0 * root);
-    // (q/R − 1) / |s| = 4a²|s| / (R(q + R)).
-    let across = 2.0 * h / (root * (q + root));
-    let e = (parallel * dot(n_x, -n_r) - across * dot(n_x, s)) / PI;
+    // F∥/a² = (R − t)/(2a²R), and R − t = 4a²h²/(R + t) where t > 0 (no cancellation either
+    // way): num/den below. F⊥/(a²|s|) = 2h/(R(q + R)). Over one denominator, one division.
+    let num = select(root - t, 4.0 * h * h, t > 0.0);
+    let den = select(a2, root + t, t > 0.0);
+    let e = (num * dot(n_x, -n_r) * (q + root) - 4.0 * h * dot(n_x, s) * den)
+        / (2.0 * PI * root * den * (q + root));
     return flux * max(e, 0.0);
 }
 
