@@ -146,7 +146,7 @@ fn decide(node: Node, level: u32, floor: u32, split_ratio: f32, b: TileBounds) -
             return SPLIT;
         }
         // (Twice the ratio: the lights within about one radius of a quarter. Those a little
-        // farther off measured no better in the near list, at a third more of them.)
+        // farther off measured no better in the near list, at 40 % more of them.)
         let at_angle = node.merged == 0u || dot(node.normal, b.plane.xyz) < NEAR_PLANE_COS;
         return select(TAKE, TAKE_NEAR, at_angle && near_a_quarter(node, 2.0 * ratio, b));
     }
