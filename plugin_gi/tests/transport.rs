@@ -242,6 +242,49 @@ fn disc_form(v: DVec3, n_r: DVec3, n_x: DVec3, area: f64) -> f64 {
     (std::f64::consts::PI / area * (parallel * n_x.dot(-n_r) - across * n_x.dot(s))).max(0.0)
 }
 
+/// The disc form (the GI's and the reference's transport, twinned above) against a numeric
+/// integral of cos·cos/(π d²) over the disc, for receivers close by and far off, facing it,
+/// across it and askew: wherever the disc lies wholly above the receiver's plane it is exact.
+#[test]
+fn the_disc_form_equals_the_integral_over_the_disc() {
+    use std::f64::consts::PI;
+    let (area, n_r) = (0.04f64, DVec3::new(0.0, 0.0, 1.0));
+    let radius = (area / PI).sqrt();
+    // Midpoint rule on a polar grid of 400 × 400 cells.
+    let integral = |x: DVec3, n_x: DVec3| -> f64 {
+        let (rings, sectors) = (400, 400);
+        let mut f = 0.0;
+        for i in 0..rings {
+            let (r0, r1) = (radius * i as f64 / rings as f64, radius * (i + 1) as f64 / rings as f64);
+            let r = 0.5 * (r0 + r1);
+            let cell = 0.5 * (r1 * r1 - r0 * r0) * 2.0 * PI / sectors as f64;
+            for j in 0..sectors {
+                let a = 2.0 * PI * (j as f64 + 0.5) / sectors as f64;
+                let v = x - DVec3::new(r * a.cos(), r * a.sin(), 0.0);
+                let d2 = v.length_squared();
+                let w = v / d2.sqrt();
+                f += n_r.dot(w).max(0.0) * n_x.dot(-w).max(0.0) / (PI * d2) * cell;
+            }
+        }
+        // π/Φ times the irradiance: the form factor over the disc, times π/A.
+        f * PI / area
+    };
+    let cases = [
+        (DVec3::new(0.0, 0.0, 0.05), DVec3::new(0.0, 0.0, -1.0)),
+        (DVec3::new(0.3, 0.0, 0.02), DVec3::new(-1.0, 0.0, 0.0)),
+        (DVec3::new(0.15, 0.1, 0.2), DVec3::new(-0.6, -0.2, -0.77).normalize()),
+        (DVec3::new(0.0, 0.25, 0.3), DVec3::new(0.0, -0.7, -0.7).normalize()),
+        (DVec3::new(2.0, -1.0, 1.5), DVec3::new(-0.8, 0.4, -0.45).normalize()),
+    ];
+    for (x, n_x) in cases {
+        // (The disc's lowest point along n_x stays above x's plane.)
+        let spread = radius * (1.0 - n_x.dot(n_r).powi(2)).sqrt();
+        assert!(n_x.dot(-x) > spread, "a case whose plane cuts the disc: {x}");
+        let (exact, form) = (integral(x, n_x), disc_form(x, n_r, n_x, area));
+        assert!((form / exact - 1.0).abs() < 1e-3, "at {x}, facing {n_x}: disc form {form}, integral {exact}");
+    }
+}
+
 /// The flux G-buffer and the GPU reference, recomputed independently on the CPU from the
 /// rasterised positions, normals and albedos: Φ = ρ·P·Ω (uniform lamp), then Σ over all texels.
 #[test]
