@@ -15,8 +15,9 @@
 //
 // Per tile, `cuts` holds the counts (class slots, facing away, near), the tile's centre
 // (the stored positions are relative to it), then the evaluated lights, one vec4 each (see
-// gi_common.wgsl): the interleaved classes from the start, the near list from the end. The tile at the centre of the view also writes its whole cut, those facing
-// away included, to `centre_lights` for the `lights` view.
+// gi_common.wgsl): the interleaved classes from the start, the near list from the end. The
+// tile at the centre of the view also writes its whole cut, those facing away included, to
+// `centre_lights` for the `lights` view.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -209,6 +210,8 @@ fn walked_share(level: u32, place: vec2u) -> f32 {
 // joins its class.
 fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) -> Walk {
     var w = Walk(0u, 0u, 0u, vec4u(0u), 1.0, 0u);
+    // The vec4s for lights: the classes fill them from the start, the near list from the end.
+    let room = tile_stride() - 2u;
     let top = PYRAMID_LEVELS - 1u;
     let top_level = table.levels[top];
     // The cut's size if nothing more were split: a split adds three.
@@ -239,10 +242,9 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) ->
                     w.away++;
                 } else {
                     let light = pack_cut_light(node, b.sphere.xyz);
-                    let room = tile_stride() - 2u;
                     let classes = 4u * max(max(w.classes.x, w.classes.y), max(w.classes.z, w.classes.w));
                     if action == TAKE_NEAR && classes + w.near + 1u <= room {
-                        cuts[near_slot(base, w.near)] = light;
+                        cuts[near_slot(base, tile_stride(), w.near)] = light;
                         w.near++;
                     } else {
                         var kind = (place.x & 1u) + 2u * (place.y & 1u);
@@ -292,11 +294,6 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) ->
 // Where the k-th light of interleaved class c of the cut at `base` is stored.
 fn class_slot(base: u32, c: u32, k: u32) -> u32 {
     return base + 2u + 4u * k + c;
-}
-
-// Where the k-th light of the near list of the cut at `base` is stored.
-fn near_slot(base: u32, k: u32) -> u32 {
-    return base + tile_stride() - 1u - k;
 }
 
 fn fewest(classes: vec4u) -> u32 {

@@ -82,7 +82,7 @@ fn cut_irradiance(base: u32, centre: vec3f, first: u32, step: u32, lights: u32, 
 fn near_irradiance(base: u32, stride: u32, centre: vec3f, count: u32, x: vec3f, n: vec3f) -> vec3f {
     var e = vec3f(0.0);
     for (var k = 0u; k < count; k++) {
-        let l = unpack_cut_light(cuts[base + stride - 1u - k], centre);
+        let l = unpack_cut_light(cuts[near_slot(base, stride, k)], centre);
         e += disc_irradiance(l.flux, l.area, l.position, l.normal, x, n);
     }
     return e;

@@ -163,11 +163,16 @@ fn unpack_rgb9e5(v: u32) -> vec3f {
 }
 
 
-// vec4s per tile in the cuts buffer: the counts (slots to sum, facing away), the tile's
-// centre, then one a light, with room for twice the most lights (the interleaved classes are
-// padded to one length: see cuts.wgsl).
+// vec4s per tile in the cuts buffer: the counts (class slots to sum, facing away, near), the
+// tile's centre, then one a light, with room for twice the most lights (the interleaved
+// classes are padded to one length, from the start; the near list from the end: see cuts.wgsl).
 fn cut_stride(top_lights: u32) -> u32 {
     return 2u + 2u * max(CUT_MAX, top_lights);
+}
+
+// Where the k-th light of the near list of the cut at `base` (of `stride` vec4s) is stored.
+fn near_slot(base: u32, stride: u32, k: u32) -> u32 {
+    return base + stride - 1u - k;
 }
 
 // Per level of the pyramid: offset into the node buffer, width, height.
@@ -258,9 +263,9 @@ fn luminance(c: vec3f) -> f32 {
 // disc is small and far or x is just above it. Far away it is the point light's
 // Φ/π·cos·cos/d²; close by it stays finite, so nothing has to be clamped. (The form it replaces,
 // Φ/π·cos·cos/(d² + A/π) from the centre, was 8–20 % off at the 2–5 radii where the cuts take
-// most lights, and a third off next to a fold.) Where x's plane cuts the disc the dot product counts the part below it
-// negatively; that happens only where the disc reaches within its radius of that plane (next
-// to a fold), and the result is held at 0 or above.
+// most lights, and a third off next to a fold.) Where x's plane cuts the disc the dot product
+// counts the part below it negatively; that happens only where the disc reaches within its
+// radius of that plane (next to a fold), and the result is held at 0 or above.
 fn disc_irradiance(flux: vec3f, area: f32, p: vec3f, n_r: vec3f, x: vec3f, n_x: vec3f) -> vec3f {
     let v = x - p;
     let h = dot(v, n_r);
