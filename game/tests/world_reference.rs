@@ -2,56 +2,19 @@
 //! G-buffer says, it integrates the same bounce as the GPU's lamp-texel reference
 //! (`reference_screen`), and it has converged at its 2 cm patches.
 
-use engine::camera::Camera;
+mod common;
+
+use common::cornell::{cornell_box, view};
 use engine::frame::ViewState;
 use engine::glam::Vec3;
 use engine::gpu::Gpu;
-use engine::headlamp::Headlamp;
 use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::renderer::Renderer;
-use engine::scene::{HeadlampProfile, IntensityDistribution, Material, Mesh, Scene, Vertex};
 use game::world_reference::WorldReference;
 use gi_reference::DEFAULT_MAX_EDGE;
 use plugin_gi::metrics::block_error;
 
 const SIZE: (u32, u32) = (160, 120);
-const FOV_Y: f32 = 50.0 * std::f32::consts::PI / 180.0;
-
-/// Appends a quad (corners counter-clockwise seen from the side its normal points to).
-fn quad(scene: &mut Scene, corners: [Vec3; 4], material: usize) {
-    let n = (corners[1] - corners[0]).cross(corners[2] - corners[0]).normalize();
-    let vertices = corners.iter().map(|p| Vertex::new(p.to_array(), n.to_array(), [0.0; 2])).collect();
-    let name = format!("quad{}", scene.meshes.len());
-    scene.meshes.push(Mesh { name, vertices, indices: vec![0, 1, 2, 0, 2, 3], material });
-}
-
-/// A Cornell-like box open towards +Z (x ∈ [-1, 1], y ∈ [0, 2], z ∈ [-1, 1]): red left wall,
-/// green right wall, white floor, ceiling and back wall, a white block on the floor.
-fn cornell_box() -> Scene {
-    let material = |rgb: [f32; 3]| Material { base_color: [rgb[0], rgb[1], rgb[2], 1.0], ..Material::default() };
-    let mut s = Scene {
-        materials: vec![material([0.75, 0.75, 0.75]), material([0.75, 0.1, 0.1]), material([0.1, 0.7, 0.1])],
-        ..Scene::default()
-    };
-    let v = Vec3::new;
-    quad(&mut s, [v(-1.0, 0.0, 1.0), v(1.0, 0.0, 1.0), v(1.0, 0.0, -1.0), v(-1.0, 0.0, -1.0)], 0);
-    quad(&mut s, [v(-1.0, 2.0, -1.0), v(1.0, 2.0, -1.0), v(1.0, 2.0, 1.0), v(-1.0, 2.0, 1.0)], 0);
-    quad(&mut s, [v(-1.0, 0.0, -1.0), v(1.0, 0.0, -1.0), v(1.0, 2.0, -1.0), v(-1.0, 2.0, -1.0)], 0);
-    quad(&mut s, [v(-1.0, 0.0, 1.0), v(-1.0, 0.0, -1.0), v(-1.0, 2.0, -1.0), v(-1.0, 2.0, 1.0)], 1);
-    quad(&mut s, [v(1.0, 0.0, -1.0), v(1.0, 0.0, 1.0), v(1.0, 2.0, 1.0), v(1.0, 2.0, -1.0)], 2);
-    let (x0, x1, z0, z1, h) = (0.1, 0.6, -0.5, 0.0, 0.6);
-    quad(&mut s, [v(x0, 0.0, z1), v(x1, 0.0, z1), v(x1, h, z1), v(x0, h, z1)], 0);
-    quad(&mut s, [v(x0, 0.0, z0), v(x0, 0.0, z1), v(x0, h, z1), v(x0, h, z0)], 0);
-    quad(&mut s, [v(x0, h, z1), v(x1, h, z1), v(x1, h, z0), v(x0, h, z0)], 0);
-    s
-}
-
-/// A uniform 10 W/sr lamp on a camera looking into the box, from `eye` at `target`.
-fn view(eye: Vec3, target: Vec3) -> ViewState {
-    let profile =
-        HeadlampProfile { power: 10.0, fov_y: FOV_Y, color: [1.0; 3], distribution: IntensityDistribution::Uniform };
-    ViewState { camera: Camera::look_at(eye, target, FOV_Y), headlamp: Headlamp::new(profile), ..ViewState::default() }
-}
 
 fn render_linear(gpu: &Gpu, renderer: &mut Renderer, view: &ViewState, name: &str) -> image::Rgba32FImage {
     renderer.set_view(name).unwrap();

@@ -2,6 +2,8 @@
 // Each test file is its own crate and uses only some of these.
 #![allow(dead_code)]
 
+pub mod cornell;
+
 use std::path::PathBuf;
 use std::process::{Command, Output};
 

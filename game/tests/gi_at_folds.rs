@@ -1,0 +1,82 @@
+//! The GI where two walls meet, as a pan slides the fold across its receivers: the receivers
+//! next to the fold are lit as the world-fixed reference says in every frame. (A receiver that
+//! fell on the fold's pixel used to go a third dark for that frame: its light comes half from
+//! the wall across the fold, most of it from within a few pixels of the corner, finer than
+//! the senders there.)
+
+mod common;
+
+use common::cornell::{cornell_box, view};
+use engine::glam::Vec3;
+use engine::gpu::Gpu;
+use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
+use engine::renderer::Renderer;
+use game::world_reference::WorldReference;
+use gi_reference::DEFAULT_MAX_EDGE;
+
+/// The size people play the box at, where a sender block is 4 pixels and a receiver 5⅓.
+const SIZE: (u32, u32) = (640, 480);
+/// Rows of the right wall's fold with the back wall that are compared (its middle).
+const ROWS: std::ops::Range<u32> = 180..300;
+/// Pixels of the right wall next to the fold that are compared: those whose light comes from
+/// the receiver nearest the fold.
+const STRIP: u32 = 4;
+
+#[test]
+fn the_light_next_to_a_fold_holds_as_the_fold_slides_across_the_receivers() {
+    let gpu = Gpu::headless().expect("a GPU adapter (on a machine without one: apt install mesa-vulkan-drivers)");
+    let scene = cornell_box();
+    // The gather's own answer each frame: no history to average the frames.
+    let settings = plugin_gi::GiSettings { history: 0.0, ..plugin_gi::GiSettings::default() };
+    let (plugins, _) = game::plugins(settings);
+    let mut renderer = Renderer::new(&gpu, &scene, plugins).unwrap();
+    renderer.set_view("indirect").unwrap();
+    let mut reference = WorldReference::new(&gpu, &scene).unwrap();
+    let target = HeadlessTarget::new(&gpu, SIZE.0, SIZE.1, ImageKind::Linear);
+    let eye = Vec3::new(0.0, 1.0, 3.4);
+    let mut worst: f64 = 0.0;
+    // Turning right a tenth of a degree at a time: the fold moves about a pixel a frame, across
+    // two receivers' spacing.
+    for step in 0..10 {
+        let yaw = (1.5 + 0.1 * step as f32).to_radians();
+        let v = view(eye, eye + Vec3::new(yaw.sin(), 0.0, -yaw.cos()));
+        let indirect = match target.render(&gpu, &mut renderer, &v).unwrap() {
+            RenderedImage::Linear(img) => img,
+            RenderedImage::Display(_) => unreachable!(),
+        };
+        let receivers = reference.receivers(&gpu, &v, SIZE).unwrap();
+        // The fold: per row, the first pixel of the right (green, normal −x) wall.
+        let first_green = |y: u32| {
+            (SIZE.0 / 2..SIZE.0)
+                .find(|&x| receivers[(y * SIZE.0 + x) as usize].normal.x < -0.9)
+                .expect("the right wall")
+        };
+        let mask: Vec<bool> = (0..SIZE.0 * SIZE.1)
+            .map(|i| {
+                let (x, y) = (i % SIZE.0, i / SIZE.0);
+                ROWS.contains(&y) && (first_green(y)..first_green(y) + STRIP).contains(&x)
+            })
+            .collect();
+        let exact = reference.evaluate(&v, SIZE, &receivers, Some(&mask), DEFAULT_MAX_EDGE);
+        let total = |img: &image::Rgba32FImage| -> f64 {
+            mask.iter()
+                .enumerate()
+                .filter(|(_, &m)| m)
+                .map(|(i, _)| {
+                    let p = img.get_pixel(i as u32 % SIZE.0, i as u32 / SIZE.0);
+                    f64::from(p[0] + p[1] + p[2])
+                })
+                .sum()
+        };
+        let error = total(&indirect) / total(&exact.image) - 1.0;
+        println!(
+            "turned {:.1}°: the {STRIP} pixels next to the fold {:+.1} % off the reference",
+            yaw.to_degrees(),
+            100.0 * error
+        );
+        worst = worst.max(error.abs());
+    }
+    // Before receivers on a fold's pixel were moved off it: 37 % at 2.0°; now 14 % there and
+    // 13 % at 2.4° (the interleave's neighbours and the senders' blocks at the corner).
+    assert!(worst < 0.2, "next to the fold the GI strays {:.1} % from the reference in some frame", 100.0 * worst);
+}
