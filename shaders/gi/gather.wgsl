@@ -107,7 +107,7 @@ fn on_plane(t: vec2i, x: vec3f, n: vec3f, d: f32) -> bool {
 // an edge). A receiver within a pixel of a fold takes half of its light from the wall across
 // it within a few pixel widths of the corner, which the senders there (blocks of several
 // texels, one disc each, the one across the corner tilted between the walls) cannot resolve:
-// the receiver column that fell on the fold's pixel went 40 % dark for a frame as a pan slid
+// the receiver column that fell on the fold's pixel went 37 % dark for a frame as a pan slid
 // the fold across the receivers. One pixel further off the light changes by about 1 %.
 fn evaluated_at(g: vec2i, x: vec3f, n: vec3f) -> vec3f {
     let d = length(x - globals.camera_pos.xyz);
@@ -187,9 +187,10 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
         // workgroup memory in batches cost a CPU device more (its loads are per lane either
         // way) than the barriers saved.
         if valid {
-            // (Where its eight neighbours lie on its surface no fold is that close.)
+            // (Where its eight neighbours lie on its surface no fold is that close; where the
+            // senders are single texels none straddles the fold.)
             var x = x;
-            if similar != EVERY_NEIGHBOUR {
+            if params.flux_block > 1u && similar != EVERY_NEIGHBOUR {
                 x = evaluated_at(g, x, n.xyz);
             }
             own = cut_irradiance(base, centre, own_class, step, lights, x, n.xyz);
