@@ -30,8 +30,8 @@ use crate::world_reference::WorldReference;
 
 /// The flicker figure's blocks are this fraction of the frame's width: 4×4 at 160 wide.
 const FLICKER_BLOCKS_ACROSS: u32 = 40;
-/// Without `--reference-every`, about this many pixels are evaluated a frame.
-const RECEIVERS_TARGET: f64 = 25_000.0;
+/// Frames up to this many pixels get the reference on every block without `--reference-every`.
+const WHOLE_FRAME_PIXELS: u32 = 160 * 120;
 
 #[derive(Serialize, Debug)]
 pub struct PanReport {
@@ -101,12 +101,17 @@ pub fn flicker_block(width: u32) -> u32 {
     (width / FLICKER_BLOCKS_ACROSS).max(1)
 }
 
-/// Every how many flicker blocks the reference is evaluated, unless told: about
-/// [`RECEIVERS_TARGET`] pixels a frame.
+/// Every how many flicker blocks the reference is evaluated, unless told: every block of a
+/// frame up to 160×120, every other block across and down (a quarter of them) above. The
+/// flicker lives in a few blocks along folds and contacts, so a sparser lattice reads it
+/// badly: on the face-on Cornell pan at 640×480 every 4th block read 0.85–1.45 % by its
+/// offset against 1.16 % over the whole frame, every other block 1.09–1.21 %.
 pub fn default_every(size: (u32, u32)) -> u32 {
-    let block = flicker_block(size.0);
-    let pixels = f64::from((size.0 / block) * block) * f64::from((size.1 / block) * block);
-    ((pixels / RECEIVERS_TARGET).sqrt().round() as u32).max(1)
+    if size.0 * size.1 <= WHOLE_FRAME_PIXELS {
+        1
+    } else {
+        2
+    }
 }
 
 pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) -> anyhow::Result<PanReport> {
@@ -331,17 +336,17 @@ mod tests {
     use super::*;
 
     #[test]
-    fn flicker_blocks_are_a_fortieth_of_the_width_and_the_reference_covers_about_25k_pixels() {
+    fn flicker_blocks_are_a_fortieth_of_the_width_and_the_reference_covers_a_quarter_of_them() {
         assert_eq!([160, 640, 1280, 20].map(flicker_block), [4, 16, 32, 1]);
         assert_eq!([2, 3, 4, 11, 21, 22].map(ordinal), ["2nd", "3rd", "4th", "11th", "21st", "22nd"]);
         assert_eq!(default_every((160, 120)), 1, "all of a 160x120 frame");
-        assert_eq!(default_every((640, 360)), 3);
-        assert_eq!(default_every((1280, 720)), 6);
-        for size in [(640, 360), (1280, 720)] {
+        for size in [(640, 360), (640, 480), (1280, 720)] {
             let every = default_every(size);
+            assert_eq!(every, 2);
             let mask = metrics::block_mask(size.0, size.1, flicker_block(size.0), every);
-            let pixels = mask.iter().filter(|&&m| m).count();
-            assert!((20_000..=30_000).contains(&pixels), "{size:?}: {pixels} pixels");
+            let pixels = mask.iter().filter(|&&m| m).count() as f64;
+            let share = pixels / f64::from(size.0 * size.1);
+            assert!((0.22..=0.26).contains(&share), "{size:?}: {share} of the pixels");
         }
     }
 }
