@@ -167,8 +167,8 @@ pub struct BenchArgs {
     #[arg(long, value_name = "METRES", value_parser = parse_patch_size, conflicts_with = "compare")]
     pub patch_size: Option<f32>,
     /// With --pan: evaluate the reference on every K-th flicker block across and down (the
-    /// same blocks every frame; every figure is taken over them) [default: 2, a quarter of
-    /// them; 1 up to 160x120].
+    /// same blocks every frame; every figure is taken over them) [default: 1 up to 640x480;
+    /// 2, a quarter of them, above].
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=64), requires = "pan")]
     pub reference_every: Option<u32>,
     /// With --pan: also evaluate the reference with patches of half the size (four times the
