@@ -164,6 +164,8 @@ pub const GPU_ONLY: &[(&str, &str)] = &[
     ("CutLight", "a function's value, never in a buffer"),
     ("TileBounds", "a function's value, never in a buffer"),
     ("Walk", "a function's value, never in a buffer"),
+    ("Halves", "a function's value, never in a buffer"),
+    ("Sums", "a function's value, never in a buffer"),
     ("SamplePlace", "a function's value, never in a buffer"),
     ("DotOut", "stage IO between vertex and fragment shaders"),
 ];

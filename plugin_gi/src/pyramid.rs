@@ -14,10 +14,10 @@ use crate::shader::module;
 
 pub const SHADER: &str = include_str!("../../shaders/gi/pyramid.wgsl");
 
-/// The node buffer of a pyramid over a lamp view of `size`.
-pub fn nodes_desc(size: (u32, u32)) -> BufferDesc {
+/// The node buffer of a pyramid over a flux G-buffer of `size` (of texel blocks: `blocks`).
+pub fn nodes_desc(size: (u32, u32), blocks: bool) -> BufferDesc {
     BufferDesc {
-        size: Quadtree::new(size.0, size.1).node_count() as u64 * NODE_SIZE,
+        size: Quadtree::of_blocks(size.0, size.1, blocks).node_count() as u64 * NODE_SIZE,
         usage: wgpu::BufferUsages::STORAGE,
     }
 }

@@ -165,6 +165,23 @@ fn near_a_quarter(node: Node, ratio: f32, b: TileBounds) -> bool {
     return near;
 }
 
+// The two sides of a base block (flux G-buffer texel) that spans a fold, as pyramid.wgsl stored
+// them; the second has no area where the node is not such a block.
+struct Halves {
+    first: Node,
+    second: Node,
+};
+
+fn fold_halves(node: Node, level: u32, place: vec2u) -> Halves {
+    var h = Halves(node, Node());
+    if level == 0u && node.merged == 0u && params.flux_block > 1u {
+        let at = table.levels[PYRAMID_LEVELS];
+        let i = at.x + place.y * at.y + place.x;
+        h = Halves(nodes[i], nodes[i + at.y * at.z]);
+    }
+    return h;
+}
+
 // The counts of one walk: lights taken, taken facing away, and 1 when a light asked to be
 // split with the cut already full (the walk then stops: see `main`).
 struct Walk {
@@ -243,7 +260,13 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) ->
                 } else {
                     let light = pack_cut_light(node, b.sphere.xyz);
                     let classes = 4u * max(max(w.classes.x, w.classes.y), max(w.classes.z, w.classes.w));
-                    if action == TAKE_NEAR && classes + w.near + 1u <= room {
+                    let halves = fold_halves(node, level, place);
+                    if action == TAKE_NEAR && halves.second.area > 0.0 && classes + w.near + 2u <= room {
+                        // A base block across a fold: its two sides, each on its own plane.
+                        cuts[near_slot(base, tile_stride(), w.near)] = pack_cut_light(halves.first, b.sphere.xyz);
+                        cuts[near_slot(base, tile_stride(), w.near + 1u)] = pack_cut_light(halves.second, b.sphere.xyz);
+                        w.near += 2u;
+                    } else if action == TAKE_NEAR && classes + w.near + 1u <= room {
                         cuts[near_slot(base, tile_stride(), w.near)] = light;
                         w.near++;
                     } else {

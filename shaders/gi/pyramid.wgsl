@@ -93,15 +93,59 @@ fn view_texel_node(t: vec2u, view: vec2u, flux_texel: vec2u) -> Node {
     return node;
 }
 
+// Sums of texel lights (flux, area, flux-weighted position and normal), for block_node.
+struct Sums {
+    flux: vec3f,
+    area: f32,
+    position: vec3f,
+    weight: f32,
+    normal: vec3f,
+};
+
+fn add_texel(s: ptr<function, Sums>, texel: Node, w: f32) {
+    (*s).flux += texel.flux;
+    (*s).area += texel.area;
+    (*s).position += texel.position * w;
+    (*s).normal += texel.normal * w;
+    (*s).weight += w;
+}
+
+// The light of one half of a block: a patch of its area on its mean plane.
+fn half_node(s: Sums) -> Node {
+    var node: Node;
+    node.merged = 1u;
+    if s.weight <= 0.0 {
+        return node;
+    }
+    node.flux = s.flux;
+    node.area = s.area;
+    node.position = s.position / s.weight;
+    node.normal = normalize(s.normal + vec3f(0.0, 0.0, 1e-12));
+    node.extent = sqrt(s.area / PI);
+    return node;
+}
+
+// Where the two halves of base node `id` are stored (see Quadtree::halves).
+fn half_index(id: vec2u, second: bool) -> u32 {
+    let h = table.levels[PYRAMID_LEVELS];
+    return h.x + select(0u, h.y * h.z, second) + id.y * h.y + id.x;
+}
+
 // The k×k block of view texels from `t` as one light, in one pass (the pyramid's merge4 over
 // the block, nested, cost a CPU device more than the rest of the GI): flux and area sum,
 // position and normal are flux-weighted, and the block is coherent when its normals agree
 // (their flux-weighted mean is at least `cos_merge` long) and its box is within
-// `merge_distance` of the lamp distance.
+// `merge_distance` of the lamp distance. It also stores the block's two halves (`id`'s
+// entries of the halves): the texels that face the way its first lit texel does and the rest.
+// Where the block spans a fold the cut's near list takes those two lights, each on its own
+// plane, instead of the one light tilted between the planes, which a receiver next to the
+// fold sees from behind.
 fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     var node: Node;
     node.merged = 1u;
-    var weight = 0.0;
+    var first = Sums();
+    var second = Sums();
+    var facing = vec3f(0.0);
     var lo = vec3f(1e30);
     var hi = vec3f(-1e30);
     var reach = 0.0;
@@ -118,21 +162,30 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
         if w <= 0.0 {
             continue;
         }
-        node.flux += texel.flux;
-        node.area += texel.area;
-        node.position += texel.position * w;
-        node.normal += texel.normal * w;
-        weight += w;
+        if first.weight <= 0.0 {
+            facing = texel.normal;
+        }
+        if dot(texel.normal, facing) >= params.cos_merge {
+            add_texel(&first, texel, w);
+        } else {
+            add_texel(&second, texel, w);
+        }
         lo = min(lo, texel.position);
         hi = max(hi, texel.position);
         reach = max(reach, texel.extent);
     }
+    let weight = first.weight + second.weight;
     if weight <= 0.0 {
+        nodes[half_index(id, false)] = Node();
+        nodes[half_index(id, true)] = Node();
         return Node();
     }
-    node.position /= weight;
-    let agreement = length(node.normal) / weight;
-    node.normal = normalize(node.normal + vec3f(0.0, 0.0, 1e-12));
+    node.flux = first.flux + second.flux;
+    node.area = first.area + second.area;
+    node.position = (first.position + second.position) / weight;
+    let sum = first.normal + second.normal;
+    let agreement = length(sum) / weight;
+    node.normal = normalize(sum + vec3f(0.0, 0.0, 1e-12));
     let limit = params.merge_distance * length(node.position - globals.lamp_pos.xyz);
     node.merged = select(0u, 1u, agreement >= params.cos_merge && length(hi - lo) <= limit);
     // A coherent block is a patch of its area, sized as one texel is (the disc of that area),
@@ -140,6 +193,8 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     // reaches as far as its farthest texel.
     let bound = length(max(node.position - lo, hi - node.position)) + reach * f32(step);
     node.extent = select(bound, sqrt(node.area / PI), node.merged == 1u);
+    nodes[half_index(id, false)] = half_node(first);
+    nodes[half_index(id, true)] = half_node(second);
     return node;
 }
 

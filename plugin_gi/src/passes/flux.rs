@@ -4,7 +4,7 @@ use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, RenderPass, Text
 use engine::passes::CoreResources;
 use engine::wgpu;
 
-use super::params::{fixed, flux_size, lamp_view};
+use super::params::{fixed, flux_size, halvings, lamp_view};
 use crate::gpu_types::Levels;
 use crate::pyramid::{levels_desc, nodes_desc, PyramidBindings, PyramidPipelines};
 use crate::quadtree::Quadtree;
@@ -26,6 +26,8 @@ pub struct FluxIo {
     levels: Write<Buffer>,
     nodes: Write<Buffer>,
     size: (u32, u32),
+    /// Whether the base is of lamp-view texel blocks (which have halves: see Quadtree).
+    blocks: bool,
 }
 
 impl FluxPass {
@@ -58,19 +60,21 @@ impl RenderPass for FluxPass {
         let attached = d.view().headlamp.attached;
         let lamp = lamp_view(&self.core.gbuffer, &self.core.lamp, attached);
         let size = flux_size(&self.settings.settings(), d.size(), attached);
+        let blocks = halvings(&self.settings.settings(), d.size(), attached) > 0;
         FluxIo {
             params: d.read(self.gi.params),
             lamp: [lamp.albedo, lamp.normal, lamp.position].map(|h| d.read(h)),
             flux: d.create(self.gi.flux, flux_texture(wgpu::TextureFormat::Rgba32Float, size)),
             flux_view: d.create(self.gi.flux_view, flux_texture(wgpu::TextureFormat::Rgba16Float, size)),
             levels: d.create(self.gi.levels, levels_desc()),
-            nodes: d.create(self.gi.nodes, nodes_desc(size)),
+            nodes: d.create(self.gi.nodes, nodes_desc(size, blocks)),
             size,
+            blocks,
         }
     }
 
     fn run(&mut self, io: &FluxIo, ctx: &mut PassContext<'_>) {
-        let levels = Levels { levels: Quadtree::new(io.size.0, io.size.1).table() };
+        let levels = Levels { levels: Quadtree::of_blocks(io.size.0, io.size.1, io.blocks).table() };
         ctx.write_buffer(&io.levels, 0, bytemuck::bytes_of(&levels));
         let [albedo, normal, position] = &io.lamp;
         let bindings = PyramidBindings {
