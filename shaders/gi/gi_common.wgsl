@@ -175,7 +175,9 @@ fn near_slot(base: u32, stride: u32, k: u32) -> u32 {
     return base + stride - 1u - k;
 }
 
-// Per level of the pyramid: offset into the node buffer, width, height.
+// Per level of the pyramid: offset into the node buffer, width, height; then (entry
+// PYRAMID_LEVELS) where the base blocks' halves lie, 0 wide over a base of texels (see
+// Quadtree::halves).
 struct Levels {
     levels: array<vec4u, 8>,
 };
