@@ -135,8 +135,9 @@ fn half_index(id: vec2u, second: bool) -> u32 {
 // the block, nested, cost a CPU device more than the rest of the GI): flux and area sum,
 // position and normal are flux-weighted, and the block is coherent when its normals agree
 // (their flux-weighted mean is at least `cos_merge` long) and its box is within
-// `merge_distance` of the lamp distance. It also stores the block's two halves (`id`'s
-// entries of the halves): the texels that face the way its first lit texel does and the rest.
+// `merge_distance` of the lamp distance. An incoherent block also stores its two halves
+// (`id`'s entries of the halves): the texels that face the way its first lit texel does and
+// the rest.
 // Where the block spans a fold the cut's near list takes those two lights, each on its own
 // plane, instead of the one light tilted between the planes, which a receiver next to the
 // fold sees from behind.
@@ -176,8 +177,6 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     }
     let weight = first.weight + second.weight;
     if weight <= 0.0 {
-        nodes[half_index(id, false)] = Node();
-        nodes[half_index(id, true)] = Node();
         return Node();
     }
     node.flux = first.flux + second.flux;
@@ -193,8 +192,11 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     // reaches as far as its farthest texel.
     let bound = length(max(node.position - lo, hi - node.position)) + reach * f32(step);
     node.extent = select(bound, sqrt(node.area / PI), node.merged == 1u);
-    nodes[half_index(id, false)] = half_node(first);
-    nodes[half_index(id, true)] = half_node(second);
+    // (Only an incoherent block's halves are ever read: see `fold_halves` in cuts.wgsl.)
+    if node.merged == 0u {
+        nodes[half_index(id, false)] = half_node(first);
+        nodes[half_index(id, true)] = half_node(second);
+    }
     return node;
 }
 
