@@ -228,7 +228,8 @@ fn walked_share(level: u32, place: vec2u) -> f32 {
 fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) -> Walk {
     var w = Walk(0u, 0u, 0u, vec4u(0u), 1.0, 0u);
     // The vec4s for lights: the classes fill them from the start, the near list from the end.
-    let room = tile_stride() - 2u;
+    let stride = tile_stride();
+    let room = stride - 2u;
     let top = PYRAMID_LEVELS - 1u;
     let top_level = table.levels[top];
     // The cut's size if nothing more were split: a split adds three.
@@ -258,23 +259,22 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) ->
                 if action == TAKE_AWAY {
                     w.away++;
                 } else {
-                    let light = pack_cut_light(node, b.sphere.xyz);
                     let classes = 4u * max(max(w.classes.x, w.classes.y), max(w.classes.z, w.classes.w));
                     let halves = fold_halves(node, level, place);
                     if action == TAKE_NEAR && halves.second.area > 0.0 && classes + w.near + 2u <= room {
                         // A base block across a fold: its two sides, each on its own plane.
-                        cuts[near_slot(base, tile_stride(), w.near)] = pack_cut_light(halves.first, b.sphere.xyz);
-                        cuts[near_slot(base, tile_stride(), w.near + 1u)] = pack_cut_light(halves.second, b.sphere.xyz);
+                        cuts[near_slot(base, stride, w.near)] = pack_cut_light(halves.first, b.sphere.xyz);
+                        cuts[near_slot(base, stride, w.near + 1u)] = pack_cut_light(halves.second, b.sphere.xyz);
                         w.near += 2u;
                     } else if action == TAKE_NEAR && classes + w.near + 1u <= room {
-                        cuts[near_slot(base, tile_stride(), w.near)] = light;
+                        cuts[near_slot(base, stride, w.near)] = pack_cut_light(node, b.sphere.xyz);
                         w.near++;
                     } else {
                         var kind = (place.x & 1u) + 2u * (place.y & 1u);
                         if w.classes[kind] >= (room - w.near) / 4u {
                             kind = fewest(w.classes);
                         }
-                        cuts[class_slot(base, kind, w.classes[kind])] = light;
+                        cuts[class_slot(base, kind, w.classes[kind])] = pack_cut_light(node, b.sphere.xyz);
                         w.classes[kind] += 1u;
                     }
                     w.taken++;

@@ -38,9 +38,14 @@ var<workgroup> cut_size: vec2u;
 fn same_surface(x: vec3f, n: vec3f, d: f32, b: u32) -> bool {
     let other = receivers[b];
     let packed = bitcast<u32>(other.w);
-    let v = other.xyz - x;
-    return packed != NO_NORMAL && length(v) < 0.1 * d && abs(dot(n, v)) < 0.02 * d
-        && dot(n, unpack_normal(packed)) > 0.9;
+    return packed != NO_NORMAL && length(other.xyz - x) < 0.1 * d
+        && on_plane(x, n, d, other.xyz, unpack_normal(packed));
+}
+
+// Whether a surface point y (normal m) lies on the plane of the receiver at x (normal n), seen
+// from distance d: facing the same way and within 2 % of d of its plane.
+fn on_plane(x: vec3f, n: vec3f, d: f32, y: vec3f, m: vec3f) -> bool {
+    return abs(dot(n, y - x)) < 0.02 * d && dot(n, m) > 0.9;
 }
 
 // The class of lights the receiver at tile position p evaluates itself.
@@ -93,13 +98,12 @@ fn near_irradiance(base: u32, stride: u32, centre: vec3f, count: u32, x: vec3f, 
 }
 
 // Whether G-buffer texel t lies on the plane of the receiver at x (normal n, distance d).
-fn on_plane(t: vec2i, x: vec3f, n: vec3f, d: f32) -> bool {
+fn texel_on_plane(t: vec2i, x: vec3f, n: vec3f, d: f32) -> bool {
     if any(t < vec2i(0)) || any(t >= vec2i(textureDimensions(gbuffer_normal))) {
         return false;
     }
     let m = textureLoad(gbuffer_normal, t, 0);
-    let y = textureLoad(gbuffer_position, t, 0).xyz;
-    return m.w > 0.0 && dot(m.xyz, n) > 0.9 && abs(dot(n, y - x)) < 0.02 * d;
+    return m.w > 0.0 && on_plane(x, n, d, textureLoad(gbuffer_position, t, 0).xyz, m.xyz);
 }
 
 // Where the receiver at x (normal n, G-buffer texel g) is evaluated: on the texel beyond it
@@ -114,8 +118,8 @@ fn evaluated_at(g: vec2i, x: vec3f, n: vec3f) -> vec3f {
     var moved = x;
     for (var axis = 0; axis < 2; axis++) {
         let o = select(vec2i(0, 1), vec2i(1, 0), axis == 0);
-        let ahead = on_plane(g + o, x, n, d);
-        if ahead != on_plane(g - o, x, n, d) {
+        let ahead = texel_on_plane(g + o, x, n, d);
+        if ahead != texel_on_plane(g - o, x, n, d) {
             moved += textureLoad(gbuffer_position, select(g - o, g + o, ahead), 0).xyz - x;
         }
     }

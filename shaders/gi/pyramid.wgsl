@@ -110,8 +110,12 @@ fn add_texel(s: ptr<function, Sums>, texel: Node, w: f32) {
     (*s).weight += w;
 }
 
-// The light of one half of a block: a patch of its area on its mean plane.
-fn half_node(s: Sums) -> Node {
+fn sum_of(a: Sums, b: Sums) -> Sums {
+    return Sums(a.flux + b.flux, a.area + b.area, a.position + b.position, a.weight + b.weight, a.normal + b.normal);
+}
+
+// The light of texels summed in `s`: a patch of their area on their mean plane.
+fn sums_node(s: Sums) -> Node {
     var node: Node;
     node.merged = 1u;
     if s.weight <= 0.0 {
@@ -137,13 +141,10 @@ fn half_index(id: vec2u, second: bool) -> u32 {
 // (their flux-weighted mean is at least `cos_merge` long) and its box is within
 // `merge_distance` of the lamp distance. An incoherent block also stores its two halves
 // (`id`'s entries of the halves): the texels that face the way its first lit texel does and
-// the rest.
-// Where the block spans a fold the cut's near list takes those two lights, each on its own
-// plane, instead of the one light tilted between the planes, which a receiver next to the
-// fold sees from behind.
+// the rest. Where the block spans a fold the cut's near list takes those two lights, each on
+// its own plane, instead of the one light tilted between the planes, which a receiver next to
+// the fold sees from behind.
 fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
-    var node: Node;
-    node.merged = 1u;
     var first = Sums();
     var second = Sums();
     var facing = vec3f(0.0);
@@ -175,16 +176,12 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
         hi = max(hi, texel.position);
         reach = max(reach, texel.extent);
     }
-    let weight = first.weight + second.weight;
-    if weight <= 0.0 {
+    let all = sum_of(first, second);
+    if all.weight <= 0.0 {
         return Node();
     }
-    node.flux = first.flux + second.flux;
-    node.area = first.area + second.area;
-    node.position = (first.position + second.position) / weight;
-    let sum = first.normal + second.normal;
-    let agreement = length(sum) / weight;
-    node.normal = normalize(sum + vec3f(0.0, 0.0, 1e-12));
+    var node = sums_node(all);
+    let agreement = length(all.normal) / all.weight;
     let limit = params.merge_distance * length(node.position - globals.lamp_pos.xyz);
     node.merged = select(0u, 1u, agreement >= params.cos_merge && length(hi - lo) <= limit);
     // A coherent block is a patch of its area, sized as one texel is (the disc of that area),
@@ -194,8 +191,8 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     node.extent = select(bound, sqrt(node.area / PI), node.merged == 1u);
     // (Only an incoherent block's halves are ever read: see `fold_halves` in cuts.wgsl.)
     if node.merged == 0u {
-        nodes[half_index(id, false)] = half_node(first);
-        nodes[half_index(id, true)] = half_node(second);
+        nodes[half_index(id, false)] = sums_node(first);
+        nodes[half_index(id, true)] = sums_node(second);
     }
     return node;
 }

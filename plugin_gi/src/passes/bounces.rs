@@ -8,7 +8,7 @@ use engine::wgpu;
 
 use super::flux::flux_texture;
 use super::gather::{irradiance_texture, lights_desc, stats_desc};
-use super::params::{flux_size, halvings, indirect_size, params, params_desc};
+use super::params::{flux_blocks, flux_size, indirect_size, params, params_desc};
 use crate::gather::{cuts_layout, CutsLayout, Gather, GatherTargets};
 use crate::pyramid::{nodes_desc, PyramidBindings, PyramidPipelines};
 use crate::resources::GiResources;
@@ -71,7 +71,7 @@ impl RenderPass for BouncePass {
             gbuffer: [g.albedo, g.normal, g.position].map(|h| d.read(h)),
             levels: d.read(self.gi.levels),
             params: d.create(b.params, params_desc()),
-            nodes: d.create(b.nodes, nodes_desc(flux, halvings(&s, d.size(), true) > 0)),
+            nodes: d.create(b.nodes, nodes_desc(flux, flux_blocks(&s, d.size(), true))),
             flux: d.create(b.flux, flux_texture(engine::wgpu::TextureFormat::Rgba32Float, flux)),
             // The flux view is of the lamp's light only.
             flux_view: d.create(b.flux_view, flux_texture(engine::wgpu::TextureFormat::Rgba16Float, (1, 1))),

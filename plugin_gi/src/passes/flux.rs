@@ -4,7 +4,7 @@ use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, RenderPass, Text
 use engine::passes::CoreResources;
 use engine::wgpu;
 
-use super::params::{fixed, flux_size, halvings, lamp_view};
+use super::params::{fixed, flux_blocks, flux_size, lamp_view};
 use crate::gpu_types::Levels;
 use crate::pyramid::{levels_desc, nodes_desc, PyramidBindings, PyramidPipelines};
 use crate::quadtree::Quadtree;
@@ -60,7 +60,7 @@ impl RenderPass for FluxPass {
         let attached = d.view().headlamp.attached;
         let lamp = lamp_view(&self.core.gbuffer, &self.core.lamp, attached);
         let size = flux_size(&self.settings.settings(), d.size(), attached);
-        let blocks = halvings(&self.settings.settings(), d.size(), attached) > 0;
+        let blocks = flux_blocks(&self.settings.settings(), d.size(), attached);
         FluxIo {
             params: d.read(self.gi.params),
             lamp: [lamp.albedo, lamp.normal, lamp.position].map(|h| d.read(h)),

@@ -49,6 +49,12 @@ pub(crate) fn halvings(settings: &GiSettings, size: (u32, u32), attached: bool) 
     k
 }
 
+/// Whether the flux G-buffer's texels are blocks of lamp-view texels (its nodes then have
+/// halves: see Quadtree::halves).
+pub(crate) fn flux_blocks(settings: &GiSettings, size: (u32, u32), attached: bool) -> bool {
+    halvings(settings, size, attached) > 0
+}
+
 /// Size of the flux G-buffer (the pyramid's base).
 pub(crate) fn flux_size(settings: &GiSettings, size: (u32, u32), attached: bool) -> (u32, u32) {
     let (w, h) = lamp_view_size(size, attached);
