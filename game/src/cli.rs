@@ -175,6 +175,11 @@ pub struct BenchArgs {
     /// cost) and print how far the reference is from it: its error and its own flicker.
     #[arg(long, requires = "pan")]
     pub converge: bool,
+    /// With --pan: frames rendered along the same path before the first measured one, so the
+    /// GI's history is that of a camera already moving [default: until the first frame's
+    /// share of the history falls under 1 %: 7 at gi.history 0.5, none without history].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=1000), requires = "pan")]
+    pub warmup: Option<u32>,
 }
 
 impl BenchArgs {

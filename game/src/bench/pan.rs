@@ -43,6 +43,8 @@ pub struct PanReport {
     pub forward: [f32; 3],
     pub fov_y_deg: f32,
     pub pan_deg: f32,
+    /// Frames rendered along the path before the first measured one (the history's warm-up).
+    pub warmup_frames: u32,
     /// Centimetres walked forward a frame.
     pub walk_cm: f32,
     /// Where the lamp was set down (eye, target), or None: on the camera.
@@ -116,6 +118,16 @@ pub fn default_every(size: (u32, u32)) -> u32 {
     }
 }
 
+/// Frames a pan renders before its first measured one, unless told: until the first frame's
+/// share of the history (`history`ᵏ) falls under 1 %, so the measured frames see the history
+/// of a camera that was already moving, as in play, and not its build-up from nothing.
+pub fn warmup_frames(history: f32) -> u32 {
+    if history <= 0.0 {
+        return 0;
+    }
+    (0.01f64.ln() / f64::from(history).ln()).ceil() as u32
+}
+
 pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) -> anyhow::Result<PanReport> {
     let mut on = gi;
     on.enabled = true;
@@ -142,7 +154,8 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
     let mut half_seconds = (Vec::new(), Vec::new());
     // Forward along the first frame's view, level.
     let walk = (start.camera.forward() * Vec3::new(1.0, 0.0, 1.0)).normalize_or_zero();
-    for t in 0..n {
+    let warmup = args.warmup.unwrap_or_else(|| warmup_frames(handle.settings().history));
+    for t in -i64::from(warmup)..n as i64 {
         let mut view = start.clone();
         // Turning right is a negative turn about +Y, about the eye.
         let turn = Quat::from_rotation_y(-(args.pan_deg * t as f32).to_radians());
@@ -152,6 +165,9 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
             view.headlamp.detach_looking_at(eye, target);
         }
         let indirect = linear(target.render(gpu, &mut renderer, &view)?)?;
+        if t < 0 {
+            continue;
+        }
         let receivers = reference.receivers(gpu, &view, (w, h))?;
         let exact = reference.evaluate(&view, (w, h), &receivers, Some(&mask), patch);
         if let Some(dir) = &args.out_dir {
@@ -195,6 +211,7 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
         forward: start.camera.forward().to_array(),
         fov_y_deg: start.camera.fov_y().unwrap_or(0.0).to_degrees(),
         pan_deg: args.pan_deg,
+        warmup_frames: warmup,
         walk_cm: args.walk_cm,
         lamp: args.pan_lamp.map(|(eye, target)| [eye.to_array(), target.to_array()]),
         gi: handle.settings(),
@@ -231,8 +248,9 @@ pub fn table(r: &PanReport) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "headlamp bench --pan: {}, {}x{}, {} frames turning right {}° a frame, on {}",
-        r.level, r.size[0], r.size[1], r.frames, r.pan_deg, r.adapter
+        "headlamp bench --pan: {}, {}x{}, {} frames turning right {}° a frame (after {} on the same path \
+         for the history), on {}",
+        r.level, r.size[0], r.size[1], r.frames, r.pan_deg, r.warmup_frames, r.adapter
     );
     if r.walk_cm != 0.0 {
         let _ = writeln!(s, "walking forward {} cm a frame", r.walk_cm);
@@ -250,8 +268,8 @@ pub fn table(r: &PanReport) -> String {
     let _ = writeln!(s, "eye {x:.2},{y:.2},{z:.2} looking {fx:.2},{fy:.2},{fz:.2}, fov {:.1}°", r.fov_y_deg);
     let _ = writeln!(
         s,
-        "GI: split ratio {}, indirect target at {} of the view, {} bounce(s)",
-        r.gi.split_ratio, r.gi.resolution_scale, r.gi.bounces
+        "GI: split ratio {}, indirect target at {} of the view, {} bounce(s), history {}",
+        r.gi.split_ratio, r.gi.resolution_scale, r.gi.bounces, r.gi.history
     );
     let f = &r.reference;
     let (median_lit, _) = median_and_worst(&f.lit_patches_per_frame.iter().map(|&v| v as f64).collect::<Vec<_>>());
@@ -340,6 +358,7 @@ mod tests {
     #[test]
     fn flicker_blocks_are_a_fortieth_of_the_width_and_the_reference_covers_all_or_a_quarter_of_them() {
         assert_eq!([160, 640, 1280, 20].map(flicker_block), [4, 16, 32, 1]);
+        assert_eq!([0.0, 0.5, 0.8].map(warmup_frames), [0, 7, 21], "0.5⁷ < 1 % < 0.5⁶");
         assert_eq!([2, 3, 4, 11, 21, 22].map(ordinal), ["2nd", "3rd", "4th", "11th", "21st", "22nd"]);
         assert_eq!([(160, 120), (640, 360), (640, 480)].map(default_every), [1, 1, 1], "the whole frame");
         for size in [(1280, 720), (1920, 1080)] {
