@@ -53,7 +53,26 @@ struct TileBounds {
     // the near list, which a sphere around the whole tile would fill with lights that lie
     // between its surfaces (across a fold or a depth step) but near none of them.
     quarters: array<vec4f, 4>,
+    // The receivers in LAYERS slices of view depth (equal steps of log depth between the
+    // tile's nearest and farthest), each as a sphere (radius < 0 where a slice has none),
+    // for the distance from a light to the tile (`layer_gap`). Across a doorway or along a
+    // wall receding from the view the tile's sphere is metres wide and mostly empty: every
+    // light in it counted as touching a receiver and was split to the finest level, the cut
+    // overflowed, and the retry made the whole cut coarse, the lights next to the receivers
+    // too (a lintel's underside by the jamb went 30 % dark in the frames its tile overflowed,
+    // and that tile changed as the pan slid the door across the tiles).
+    layers: array<vec4f, LAYERS>,
 };
+
+const LAYERS: u32 = 4u;
+// Tiles whose farthest receiver is less than this many times as far as the nearest keep one
+// slice (their sphere): there the slices gain nothing and would only make the cut coarser.
+const DEPTH_STEP: f32 = 1.5;
+
+// The depth slice of a receiver at view depth `depth` (see TileBounds.layers).
+fn layer_of(depth: f32, nearest: f32, scale: f32) -> u32 {
+    return min(u32(max(log(depth / max(nearest, 1e-6)) * scale, 0.0)), LAYERS - 1u);
+}
 
 fn quarter(i: u32) -> u32 {
     return u32((i % CUT_TILE) >= CUT_TILE / 2u) + 2u * u32((i / CUT_TILE) >= CUT_TILE / 2u);
@@ -66,22 +85,40 @@ fn tile_bounds(origin: vec2u) -> TileBounds {
     var normal = vec3f(0.0);
     var count = 0u;
     var quarters: array<vec4f, 4>;
+    var depths = vec2f(1e30, 0.0);
     for (var i = 0u; i < CUT_TILE * CUT_TILE; i++) {
         let q = origin + vec2u(i % CUT_TILE, i / CUT_TILE);
         if all(q < params.indirect_size) {
             let g = receiver_texel(q, view, params.indirect_size);
             let n = textureLoad(gbuffer_normal, g, 0);
             if n.w > 0.0 {
-                let x = textureLoad(gbuffer_position, g, 0).xyz;
-                centre += x;
+                let x = textureLoad(gbuffer_position, g, 0);
+                centre += x.xyz;
                 normal += n.xyz;
                 count++;
-                quarters[quarter(i)] += vec4f(x, 1.0);
+                quarters[quarter(i)] += vec4f(x.xyz, 1.0);
+                depths = vec2f(min(depths.x, x.w), max(depths.y, x.w));
+            }
+        }
+    }
+    let span = depths.y / max(depths.x, 1e-6);
+    let depth_scale = select(0.0, f32(LAYERS) / log(span), span > DEPTH_STEP);
+    var layers: array<vec4f, LAYERS>;
+    for (var i = 0u; i < CUT_TILE * CUT_TILE; i++) {
+        let q = origin + vec2u(i % CUT_TILE, i / CUT_TILE);
+        if all(q < params.indirect_size) {
+            let g = receiver_texel(q, view, params.indirect_size);
+            if textureLoad(gbuffer_normal, g, 0).w > 0.0 {
+                let x = textureLoad(gbuffer_position, g, 0);
+                layers[layer_of(x.w, depths.x, depth_scale)] += vec4f(x.xyz, 1.0);
             }
         }
     }
     for (var k = 0u; k < 4u; k++) {
         b.quarters[k] = vec4f(quarters[k].xyz / max(quarters[k].w, 1.0), select(-1.0, 0.0, quarters[k].w > 0.0));
+    }
+    for (var k = 0u; k < LAYERS; k++) {
+        b.layers[k] = vec4f(layers[k].xyz / max(layers[k].w, 1.0), select(-1.0, 0.0, layers[k].w > 0.0));
     }
     b.count = count;
     if count == 0u {
@@ -101,6 +138,8 @@ fn tile_bounds(origin: vec2u) -> TileBounds {
                 radius = max(radius, length(v));
                 let k = quarter(i);
                 b.quarters[k].w = max(b.quarters[k].w, length(x - b.quarters[k].xyz));
+                let layer = layer_of(textureLoad(gbuffer_position, g, 0).w, depths.x, depth_scale);
+                b.layers[layer].w = max(b.layers[layer].w, length(x - b.layers[layer].xyz));
                 thickness = max(thickness, abs(dot(v, normal)));
             }
         }
@@ -139,7 +178,8 @@ fn decide(node: Node, level: u32, floor: u32, split_ratio: f32, b: TileBounds) -
             return TAKE_AWAY;
         }
     }
-    let gap = max(dist - radius, 0.0);
+    // (Both are bounds on the distance to the nearest receiver; the larger is the closer.)
+    let gap = max(max(dist - radius, 0.0), layer_gap(node.position, b));
     // A light that spans a fold or a depth step is split sooner.
     let ratio = select(0.5 * split_ratio, split_ratio, node.merged == 1u);
     if node.extent > ratio * gap {
@@ -152,6 +192,19 @@ fn decide(node: Node, level: u32, floor: u32, split_ratio: f32, b: TileBounds) -
         return select(TAKE, TAKE_NEAR, at_angle && near_a_quarter(node, 2.0 * ratio, b));
     }
     return TAKE;
+}
+
+// The distance from x to the nearest of the tile's depth slices' spheres (0 inside one): a
+// bound on its distance to the nearest receiver, as the tile's sphere's is.
+fn layer_gap(x: vec3f, b: TileBounds) -> f32 {
+    var gap = 1e30;
+    for (var k = 0u; k < LAYERS; k++) {
+        let l = b.layers[k];
+        if l.w >= 0.0 {
+            gap = min(gap, max(length(l.xyz - x) - l.w, 0.0));
+        }
+    }
+    return gap;
 }
 
 // Whether the light is as large against its distance to one of the tile's quarters as a
