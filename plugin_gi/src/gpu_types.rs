@@ -167,6 +167,7 @@ pub const GPU_ONLY: &[(&str, &str)] = &[
     ("Halves", "a function's value, never in a buffer"),
     ("Sums", "a function's value, never in a buffer"),
     ("SamplePlace", "a function's value, never in a buffer"),
+    ("SurfacePoint", "a function's value, never in a buffer"),
     ("DotOut", "stage IO between vertex and fragment shaders"),
 ];
 

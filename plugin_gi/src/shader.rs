@@ -3,7 +3,10 @@
 use engine::wgpu;
 
 /// The GI's shared WGSL include.
-pub const INCLUDES: &[(&str, &str)] = &[("gi_common.wgsl", include_str!("../../shaders/gi/gi_common.wgsl"))];
+pub const INCLUDES: &[(&str, &str)] = &[
+    ("gi_common.wgsl", include_str!("../../shaders/gi/gi_common.wgsl")),
+    ("receivers.wgsl", include_str!("../../shaders/gi/receivers.wgsl")),
+];
 
 pub fn module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
     engine::shader::module(device, label, source, INCLUDES)

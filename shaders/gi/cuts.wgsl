@@ -20,6 +20,7 @@
 // `centre_lights` for the `lights` view.
 #include "common.wgsl"
 #include "gi_common.wgsl"
+#include "receivers.wgsl"
 
 struct Stats {
     // Draw arguments of the `lights` view: the cut of the tile at the centre of the view.
@@ -81,18 +82,23 @@ fn quarter(i: u32) -> u32 {
 fn tile_bounds(origin: vec2u) -> TileBounds {
     var b: TileBounds;
     let view = textureDimensions(gbuffer_normal);
+    // The tile's receivers where the gather evaluates them: position and view depth (w < 0
+    // where there is none).
+    var points: array<vec4f, 64>;
     var centre = vec3f(0.0);
     var normal = vec3f(0.0);
     var count = 0u;
     var quarters: array<vec4f, 4>;
     var depths = vec2f(1e30, 0.0);
     for (var i = 0u; i < CUT_TILE * CUT_TILE; i++) {
+        points[i] = vec4f(0.0, 0.0, 0.0, -1.0);
         let q = origin + vec2u(i % CUT_TILE, i / CUT_TILE);
         if all(q < params.indirect_size) {
-            let g = receiver_texel(q, view, params.indirect_size);
+            let g = receiver_at(q, view, params.indirect_size);
             let n = textureLoad(gbuffer_normal, g, 0);
             if n.w > 0.0 {
                 let x = textureLoad(gbuffer_position, g, 0);
+                points[i] = x;
                 centre += x.xyz;
                 normal += n.xyz;
                 count++;
@@ -105,13 +111,8 @@ fn tile_bounds(origin: vec2u) -> TileBounds {
     let depth_scale = select(0.0, f32(LAYERS) / log(span), span > DEPTH_STEP);
     var layers: array<vec4f, LAYERS>;
     for (var i = 0u; i < CUT_TILE * CUT_TILE; i++) {
-        let q = origin + vec2u(i % CUT_TILE, i / CUT_TILE);
-        if all(q < params.indirect_size) {
-            let g = receiver_texel(q, view, params.indirect_size);
-            if textureLoad(gbuffer_normal, g, 0).w > 0.0 {
-                let x = textureLoad(gbuffer_position, g, 0);
-                layers[layer_of(x.w, depths.x, depth_scale)] += vec4f(x.xyz, 1.0);
-            }
+        if points[i].w >= 0.0 {
+            layers[layer_of(points[i].w, depths.x, depth_scale)] += vec4f(points[i].xyz, 1.0);
         }
     }
     for (var k = 0u; k < 4u; k++) {
@@ -129,19 +130,15 @@ fn tile_bounds(origin: vec2u) -> TileBounds {
     var radius = 0.0;
     var thickness = 0.0;
     for (var i = 0u; i < CUT_TILE * CUT_TILE; i++) {
-        let q = origin + vec2u(i % CUT_TILE, i / CUT_TILE);
-        if all(q < params.indirect_size) {
-            let g = receiver_texel(q, view, params.indirect_size);
-            if textureLoad(gbuffer_normal, g, 0).w > 0.0 {
-                let x = textureLoad(gbuffer_position, g, 0).xyz;
-                let v = x - centre;
-                radius = max(radius, length(v));
-                let k = quarter(i);
-                b.quarters[k].w = max(b.quarters[k].w, length(x - b.quarters[k].xyz));
-                let layer = layer_of(textureLoad(gbuffer_position, g, 0).w, depths.x, depth_scale);
-                b.layers[layer].w = max(b.layers[layer].w, length(x - b.layers[layer].xyz));
-                thickness = max(thickness, abs(dot(v, normal)));
-            }
+        if points[i].w >= 0.0 {
+            let x = points[i].xyz;
+            let v = x - centre;
+            radius = max(radius, length(v));
+            let k = quarter(i);
+            b.quarters[k].w = max(b.quarters[k].w, length(x - b.quarters[k].xyz));
+            let layer = layer_of(points[i].w, depths.x, depth_scale);
+            b.layers[layer].w = max(b.layers[layer].w, length(x - b.layers[layer].xyz));
+            thickness = max(thickness, abs(dot(v, normal)));
         }
     }
     b.sphere = vec4f(centre, radius);

@@ -11,6 +11,7 @@
 // is evaluated a pixel further along its surface (`evaluated_at`).
 #include "common.wgsl"
 #include "gi_common.wgsl"
+#include "receivers.wgsl"
 
 @group(1) @binding(0) var<uniform> params: GiParams;
 @group(1) @binding(1) var<uniform> table: Levels;
@@ -40,12 +41,6 @@ fn same_surface(x: vec3f, n: vec3f, d: f32, b: u32) -> bool {
     let packed = bitcast<u32>(other.w);
     return packed != NO_NORMAL && length(other.xyz - x) < 0.1 * d
         && on_plane(x, n, d, other.xyz, unpack_normal(packed));
-}
-
-// Whether a surface point y (normal m) lies on the plane of the receiver at x (normal n), seen
-// from distance d: facing the same way and within 2 % of d of its plane.
-fn on_plane(x: vec3f, n: vec3f, d: f32, y: vec3f, m: vec3f) -> bool {
-    return abs(dot(n, y - x)) < 0.02 * d && dot(n, m) > 0.9;
 }
 
 // The class of lights the receiver at tile position p evaluates itself.
@@ -141,7 +136,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     var depth = 0.0;
     var g = vec2i(0);
     if in_view {
-        g = receiver_texel(q, textureDimensions(gbuffer_normal), params.indirect_size);
+        g = receiver_at(q, textureDimensions(gbuffer_normal), params.indirect_size);
         n = textureLoad(gbuffer_normal, g, 0);
         let position = textureLoad(gbuffer_position, g, 0);
         x = position.xyz;

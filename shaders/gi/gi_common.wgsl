@@ -250,6 +250,12 @@ fn sample_centre(s: vec2i, view: vec2u, indirect: vec2u) -> vec2f {
     return vec2f(receiver_texel(vec2u(s), view, indirect)) + 0.5;
 }
 
+// Whether a surface point y (normal m) lies on the plane of the receiver at x (normal n), seen
+// from distance d: facing the same way and within 2 % of d of its plane.
+fn on_plane(x: vec3f, n: vec3f, d: f32, y: vec3f, m: vec3f) -> bool {
+    return abs(dot(n, y - x)) < 0.02 * d && dot(n, m) > 0.9;
+}
+
 fn luminance(c: vec3f) -> f32 {
     return dot(c, vec3f(0.2126, 0.7152, 0.0722));
 }

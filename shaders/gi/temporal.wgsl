@@ -9,6 +9,7 @@
 // `temporal.blend.z`: a light switched off or an object moved out of the beam leaves no trail.
 #include "common.wgsl"
 #include "gi_common.wgsl"
+#include "receivers.wgsl"
 
 struct TemporalParams {
     // Last frame's view-projection: where a world point was on screen.
@@ -24,6 +25,8 @@ struct TemporalParams {
 @group(1) @binding(3) var history: texture_2d<f32>;
 @group(1) @binding(4) var gbuffer_position: texture_2d<f32>;
 @group(1) @binding(5) var blended: texture_storage_2d<rgba32float, write>;
+// (For where each receiver was evaluated: receivers.wgsl.)
+@group(1) @binding(6) var gbuffer_normal: texture_2d<f32>;
 
 // Relative view-depth difference within which a sample lies on the same surface.
 const DEPTH_TOLERANCE: f32 = 0.05;
@@ -36,14 +39,16 @@ fn same_surface(packed: f32, depth: f32, n: vec3f) -> bool {
         && dot(receiver_normal(packed), n) > NORMAL_COS;
 }
 
-// Last frame's irradiance at world point x (normal n), or w = 0 where it had none there.
-fn reprojected(x: vec3f, n: vec3f, full: vec2f, low: vec2i) -> vec4f {
+// Last frame's irradiance at world point x (normal n), or w = 0 where it had none there. The
+// receiver was evaluated `offset` pixels from its cell's centre (receivers.wgsl): its history
+// is looked up as far from where x was, so a still view lands on its own sample.
+fn reprojected(x: vec3f, n: vec3f, full: vec2f, low: vec2i, offset: vec2f) -> vec4f {
     let clip = temporal.previous_view_proj * vec4f(x, 1.0);
     if clip.w <= 1e-4 {
         return vec4f(0.0);
     }
     let ndc = clip.xy / clip.w;
-    let pixel = vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * full;
+    let pixel = vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * full - offset;
     // The samples about it, and its place between them, as the composite finds them, so a
     // still view takes each sample's own history.
     let place = sample_place(pixel, vec2u(full), vec2u(low));
@@ -92,10 +97,11 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let full = vec2f(textureDimensions(gbuffer_position));
-    let x = textureLoad(gbuffer_position, receiver_texel(vec2u(q), vec2u(full), vec2u(low)), 0).xyz;
+    let at = receiver_at(vec2u(q), vec2u(full), vec2u(low));
+    let x = textureLoad(gbuffer_position, at, 0).xyz;
     let depth = receiver_depth(c.w);
     let n = receiver_normal(c.w);
-    let previous = reprojected(x, n, full, low);
+    let previous = reprojected(x, n, full, low, vec2f(at - receiver_texel(vec2u(q), vec2u(full), vec2u(low))));
     if previous.w == 0.0 {
         textureStore(blended, q, c);
         return;

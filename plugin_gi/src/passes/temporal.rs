@@ -75,6 +75,7 @@ pub struct TemporalIo {
     previous: Read<Image>,
     position: Read<Image>,
     blended: Write<Image>,
+    normal: Read<Image>,
     size: (u32, u32),
 }
 
@@ -86,7 +87,15 @@ impl TemporalPass {
         core: CoreResources,
         gi: GiResources,
     ) -> Self {
-        let slots = [S::Uniform, S::Uniform, S::Texture, S::Texture, S::Texture, S::StorageTexture(IRRADIANCE_FORMAT)];
+        let slots = [
+            S::Uniform,
+            S::Uniform,
+            S::Texture,
+            S::Texture,
+            S::Texture,
+            S::StorageTexture(IRRADIANCE_FORMAT),
+            S::Texture,
+        ];
         let layout = layout(device, "gi temporal", &slots);
         let module = crate::shader::module(device, "gi temporal", SHADER);
         let pipeline = compute_pipeline(device, "gi temporal", &module, "main", &[Some(globals), Some(&layout)]);
@@ -126,6 +135,7 @@ impl RenderPass for TemporalPass {
             previous: d.read(self.history.previous()),
             position: d.read(self.core.gbuffer.position),
             blended: d.create(self.history.current(), irradiance_texture(size)),
+            normal: d.read(self.core.gbuffer.normal),
             size,
         })
     }
@@ -160,6 +170,7 @@ impl RenderPass for TemporalPass {
                 R::View(ctx.view(&io.previous)),
                 R::View(ctx.view(&io.position)),
                 R::View(ctx.view(&io.blended)),
+                R::View(ctx.view(&io.normal)),
             ],
         );
         let mut pass = ctx

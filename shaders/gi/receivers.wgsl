@@ -1,0 +1,67 @@
+// Where each receiver of the indirect target is evaluated (cuts, gather and temporal passes,
+// which declare `gbuffer_normal` and `gbuffer_position`). A receiver stands for a cell of
+// view pixels and is evaluated on one G-buffer texel of it: the centre, unless the centre's
+// surface is also at a neighbouring cell's centre and another part of the cell shows a surface
+// that no neighbouring centre does. A door's jamb or a lintel narrower than a cell was
+// otherwise evaluated only in the frames where a centre happened to fall on it, and in the
+// others took the wall's light, so it blinked as the view slid the cells over it. The cell's
+// centre surface is then evaluated by its neighbour, a cell away. The composite still weighs
+// each sample by its cell's centre (at most half a cell off); the temporal pass looks up a
+// moved receiver's history as far from where its point was as it lies from the centre.
+
+struct SurfacePoint {
+    x: vec3f,
+    n: vec3f,
+    valid: bool,
+};
+
+fn surface_point(t: vec2i) -> SurfacePoint {
+    var s: SurfacePoint;
+    if any(t < vec2i(0)) || any(t >= vec2i(textureDimensions(gbuffer_normal))) {
+        return s;
+    }
+    let n = textureLoad(gbuffer_normal, t, 0);
+    s.valid = n.w > 0.0;
+    s.n = n.xyz;
+    s.x = textureLoad(gbuffer_position, t, 0).xyz;
+    return s;
+}
+
+// Whether b lies on a's surface (its plane, facing its way).
+fn same_plane(a: SurfacePoint, b: SurfacePoint) -> bool {
+    return a.valid && b.valid && on_plane(a.x, a.n, length(a.x - globals.camera_pos.xyz), b.x, b.n);
+}
+
+// Whether the centre of a cell next to q (across or down) lies on s's surface.
+fn at_a_neighbour(s: SurfacePoint, q: vec2i, view: vec2u, indirect: vec2u) -> bool {
+    var found = false;
+    for (var k = 0; k < 4; k++) {
+        let o = select(vec2i(0, 2 * (k & 1) - 1), vec2i(2 * (k & 1) - 1, 0), k < 2);
+        let r = q + o;
+        if all(r >= vec2i(0)) && all(r < vec2i(indirect)) {
+            found = found || same_plane(s, surface_point(receiver_texel(vec2u(r), view, indirect)));
+        }
+    }
+    return found;
+}
+
+// The G-buffer texel receiver q is evaluated on (see above): the cell's centre, or the first
+// of the centres of its four quarters that shows a surface no neighbouring centre shows.
+fn receiver_at(q: vec2u, view: vec2u, indirect: vec2u) -> vec2i {
+    let c = receiver_texel(q, view, indirect);
+    let centre = surface_point(c);
+    let qi = vec2i(q);
+    if centre.valid && !at_a_neighbour(centre, qi, view, indirect) {
+        return c;
+    }
+    let cell = vec2f(view) / vec2f(indirect);
+    for (var k = 0; k < 4; k++) {
+        // (In a cell one texel wide each way this is its centre again, and is passed over.)
+        let t = vec2i((vec2f(q) + vec2f(0.25 + 0.5 * f32(k & 1), 0.25 + 0.5 * f32(k >> 1u))) * cell);
+        let s = surface_point(t);
+        if s.valid && !(centre.valid && same_plane(centre, s)) && !at_a_neighbour(s, qi, view, indirect) {
+            return t;
+        }
+    }
+    return c;
+}
