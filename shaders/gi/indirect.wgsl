@@ -18,6 +18,18 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenOut {
     return fullscreen_vertex(index);
 }
 
+// Sample s's irradiance (rgb) and how much it shares the surface of a pixel with normal n at
+// view depth `depth` (w: normal and depth weights, 0 where it has no surface).
+fn on_surface(s: vec2i, low: vec2i, n: vec3f, depth: f32) -> vec4f {
+    let sample = textureLoad(irradiance, clamp(s, vec2i(0), low - 1), 0);
+    let depth_err = abs(receiver_depth(sample.w) - depth) / max(depth, 1e-3);
+    let facing = max(0.0, dot(receiver_normal(sample.w), n));
+    let facing2 = facing * facing;
+    let facing4 = facing2 * facing2;
+    let surface = bitcast<u32>(sample.w) != 0u;
+    return vec4f(sample.rgb, select(0.0, facing4 * facing4, surface) * exp(-depth_err * 20.0));
+}
+
 // L_i at pixel p; w = 0 where there is no geometry.
 fn indirect_radiance(p: vec2i) -> vec4f {
     let normal = textureLoad(gbuffer_normal, p, 0);
@@ -26,38 +38,51 @@ fn indirect_radiance(p: vec2i) -> vec4f {
     }
     let depth = textureLoad(gbuffer_position, p, 0).w;
     let full = textureDimensions(gbuffer_normal);
-    let low = vec2f(params.indirect_size);
+    let low = vec2i(params.indirect_size);
     // The two samples on either side of p along each axis, and p's place between them.
     let place = sample_place(vec2f(p) + 0.5, full, params.indirect_size);
     let base = place.base;
     let f = clamp(place.f, vec2f(0.0), vec2f(1.0));
     var sum = vec3f(0.0);
     var total = 0.0;
-    var nearest = vec3f(0.0);
-    var nearest_err = 1e30;
     for (var i = 0; i < 4; i++) {
         let o = vec2i(i & 1, i >> 1u);
-        let s = clamp(base + o, vec2i(0), vec2i(low) - 1);
-        let sample = textureLoad(irradiance, s, 0);
-        // The depth and normal of the G-buffer texel the gather evaluated for sample s.
-        let surface = bitcast<u32>(sample.w) != 0u;
-        let sn = receiver_normal(sample.w);
         let bilinear = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
-        let depth_err = abs(receiver_depth(sample.w) - depth) / max(depth, 1e-3);
-        let facing = max(0.0, dot(sn, normal.xyz));
-        let facing2 = facing * facing;
-        let facing4 = facing2 * facing2;
-        let geometric = select(0.0, facing4 * facing4, surface) * exp(-depth_err * 20.0);
-        sum += sample.rgb * bilinear * geometric;
-        total += bilinear * geometric;
-        let err = depth_err + (1.0 - dot(sn, normal.xyz));
-        if surface && err < nearest_err {
-            nearest_err = err;
-            nearest = sample.rgb;
+        let s = on_surface(base + o, low, normal.xyz, depth);
+        sum += s.rgb * bilinear * s.w;
+        total += bilinear * s.w;
+    }
+    // Where none of the four shares this surface (a strip narrower than the samples' spacing,
+    // the near side of a depth step), the ring of twelve around them, tent-weighted by
+    // distance, rather than a sample of another surface, which pulled the wall's light onto
+    // a door's jamb in the frames where no sample fell on the jamb.
+    if total <= 1e-4 {
+        for (var i = 0; i < 16; i++) {
+            let o = vec2i(i & 3, i >> 2u) - 1;
+            if all(o >= vec2i(0)) && all(o <= vec2i(1)) {
+                continue;
+            }
+            let t = max(vec2f(0.0), 1.0 - abs(vec2f(o) - f) * 0.5);
+            let s = on_surface(base + o, low, normal.xyz, depth);
+            sum += s.rgb * t.x * t.y * s.w;
+            total += t.x * t.y * s.w;
         }
     }
-    // Where no sample shares this surface, take the most similar one rather than bleed.
-    let e = select(nearest, sum / total, total > 1e-4);
+    var e = sum / max(total, 1e-30);
+    if total <= 1e-6 {
+        // Nothing near on this surface: the most similar of the four.
+        var nearest_err = 1e30;
+        for (var i = 0; i < 4; i++) {
+            let sample = textureLoad(irradiance, clamp(base + vec2i(i & 1, i >> 1u), vec2i(0), low - 1), 0);
+            if bitcast<u32>(sample.w) != 0u {
+                let err = abs(receiver_depth(sample.w) - depth) / max(depth, 1e-3) + (1.0 - dot(receiver_normal(sample.w), normal.xyz));
+                if err < nearest_err {
+                    nearest_err = err;
+                    e = sample.rgb;
+                }
+            }
+        }
+    }
     let rho = textureLoad(gbuffer_albedo, p, 0).rgb;
     return vec4f(rho / PI * e, 1.0);
 }
