@@ -6,7 +6,7 @@
 
 mod common;
 
-use engine::glam::{Quat, Vec3};
+use engine::glam::Quat;
 use engine::gpu::Gpu;
 use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::renderer::Renderer;
