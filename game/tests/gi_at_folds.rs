@@ -58,17 +58,7 @@ fn the_light_next_to_a_fold_holds_as_the_fold_slides_across_the_receivers() {
             })
             .collect();
         let exact = reference.evaluate(&v, SIZE, &receivers, Some(&mask), DEFAULT_MAX_EDGE);
-        let total = |img: &image::Rgba32FImage| -> f64 {
-            mask.iter()
-                .enumerate()
-                .filter(|(_, &m)| m)
-                .map(|(i, _)| {
-                    let p = img.get_pixel(i as u32 % SIZE.0, i as u32 / SIZE.0);
-                    f64::from(p[0] + p[1] + p[2])
-                })
-                .sum()
-        };
-        let error = total(&indirect) / total(&exact.image) - 1.0;
+        let error = common::masked_sum(&indirect, &mask) / common::masked_sum(&exact.image, &mask) - 1.0;
         println!(
             "turned {:.1}°: the {STRIP} pixels next to the fold {:+.1} % off the reference",
             yaw.to_degrees(),

@@ -55,17 +55,7 @@ fn a_jamb_narrower_than_a_receiver_keeps_its_light_as_the_view_slides() {
             .collect();
         jamb_pixels = jamb_pixels.min(mask.iter().filter(|&&m| m).count());
         let exact = reference.evaluate(&v, SIZE, &receivers, Some(&mask), DEFAULT_MAX_EDGE);
-        let total = |img: &image::Rgba32FImage| -> f64 {
-            mask.iter()
-                .enumerate()
-                .filter(|(_, &m)| m)
-                .map(|(i, _)| {
-                    let p = img.get_pixel(i as u32 % SIZE.0, i as u32 / SIZE.0);
-                    f64::from(p[0] + p[1] + p[2])
-                })
-                .sum()
-        };
-        let error = total(&indirect) / total(&exact.image) - 1.0;
+        let error = common::masked_sum(&indirect, &mask) / common::masked_sum(&exact.image, &mask) - 1.0;
         println!("turned {:.2}°: the jamb {:+.1} % off the reference", 0.25 * step as f32, 100.0 * error);
         worst = worst.max(error.abs());
     }

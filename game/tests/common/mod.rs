@@ -22,3 +22,9 @@ pub fn scratch(name: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
+
+/// The sum of the three channels over the pixels of `img` that `mask` marks (one flag a pixel,
+/// row by row): a region's light, to hold against the reference's over the same pixels.
+pub fn masked_sum(img: &image::Rgba32FImage, mask: &[bool]) -> f64 {
+    img.pixels().zip(mask).filter(|(_, &m)| m).map(|(p, _)| f64::from(p[0] + p[1] + p[2])).sum()
+}
