@@ -94,11 +94,8 @@ fn near_irradiance(base: u32, stride: u32, centre: vec3f, count: u32, x: vec3f, 
 
 // Whether G-buffer texel t lies on the plane of the receiver at x (normal n, distance d).
 fn texel_on_plane(t: vec2i, x: vec3f, n: vec3f, d: f32) -> bool {
-    if any(t < vec2i(0)) || any(t >= vec2i(textureDimensions(gbuffer_normal))) {
-        return false;
-    }
-    let m = textureLoad(gbuffer_normal, t, 0);
-    return m.w > 0.0 && on_plane(x, n, d, textureLoad(gbuffer_position, t, 0).xyz, m.xyz);
+    let s = surface_point(t);
+    return s.valid && on_plane(x, n, d, s.x, s.n);
 }
 
 // Where the receiver at x (normal n, G-buffer texel g) is evaluated: on the texel beyond it
