@@ -175,11 +175,16 @@ fn decide(node: Node, level: u32, floor: u32, split_ratio: f32, b: TileBounds) -
             return TAKE_AWAY;
         }
     }
-    // (Both are bounds on the distance to the nearest receiver; the larger is the closer.)
-    let gap = max(max(dist - radius, 0.0), layer_gap(node.position, b));
     // A light that spans a fold or a depth step is split sooner.
     let ratio = select(0.5 * split_ratio, split_ratio, node.merged == 1u);
-    if node.extent > ratio * gap {
+    // The sphere's and the depth slices' gaps both bound the distance to the nearest receiver,
+    // and the larger is the closer. The slices can only spare a light from splitting, so they
+    // are measured only for one the sphere would split (most lights are taken at once).
+    let sphere_gap = max(dist - radius, 0.0);
+    if node.extent <= ratio * sphere_gap {
+        return TAKE;
+    }
+    if node.extent > ratio * max(sphere_gap, layer_gap(node.position, b)) {
         if level > floor {
             return SPLIT;
         }

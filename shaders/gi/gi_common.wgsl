@@ -147,19 +147,24 @@ const NO_NORMAL: u32 = 0x80008000u;
 fn pack_rgb9e5(c: vec3f) -> u32 {
     let m = clamp(c, vec3f(0.0), vec3f(65408.0));
     let top = max(m.x, max(m.y, m.z));
-    var e = max(-16, i32(floor(log2(max(top, 1e-30))))) + 16;
-    var unit = exp2(f32(e - 24));
-    if floor(top / unit + 0.5) >= 512.0 {
-        unit *= 2.0;
+    // floor(log2(top)) and the powers of two from the float's exponent bits: exact, and a
+    // CPU device's log2 and exp2 are polynomials evaluated per light of every cut.
+    var e = max(-16, i32((bitcast<u32>(max(top, 1e-30)) >> 23u) & 0xffu) - 127) + 16;
+    if floor(top * power_of_two(24 - e) + 0.5) >= 512.0 {
         e += 1;
     }
-    let q = vec3u(min(floor(m / unit + 0.5), vec3f(511.0)));
+    let q = vec3u(min(floor(m * power_of_two(24 - e) + 0.5), vec3f(511.0)));
     return q.x | (q.y << 9u) | (q.z << 18u) | (u32(e) << 27u);
 }
 
 fn unpack_rgb9e5(v: u32) -> vec3f {
     let q = vec3f(f32(v & 511u), f32((v >> 9u) & 511u), f32((v >> 18u) & 511u));
-    return q * exp2(f32(i32(v >> 27u)) - 24.0);
+    return q * power_of_two(i32(v >> 27u) - 24);
+}
+
+// 2^k for -126 <= k <= 127, built from its exponent bits.
+fn power_of_two(k: i32) -> f32 {
+    return bitcast<f32>(u32(k + 127) << 23u);
 }
 
 
