@@ -38,6 +38,9 @@ pub struct GatherTargets<'a> {
     pub stats: &'a wgpu::Buffer,
     /// The cut of the tile at the centre of the view.
     pub lights: &'a wgpu::Buffer,
+    /// Where each receiver is evaluated ([`receivers_desc`]): the cuts pass finds it, the sum
+    /// reads it.
+    pub receivers: &'a wgpu::Buffer,
 }
 
 pub struct Gather {
@@ -110,6 +113,12 @@ pub fn cuts_desc(layout: &CutsLayout) -> BufferDesc {
     BufferDesc { size: layout.bytes(), usage: wgpu::BufferUsages::STORAGE }
 }
 
+/// Where each receiver of an indirect target of `size` is evaluated: a G-buffer texel, one
+/// u32 a receiver (x | y << 16), row by row.
+pub fn receivers_desc(size: (u32, u32)) -> BufferDesc {
+    BufferDesc { size: 4 * u64::from(size.0) * u64::from(size.1), usage: wgpu::BufferUsages::STORAGE }
+}
+
 /// How the cuts of an indirect target lie in their buffer: `tiles` across and down, each
 /// tile's cut `stride` vec4s (its counts, its centre, then one a light with room for the
 /// classes' padding: see gi_common.wgsl).
@@ -149,6 +158,7 @@ impl Gather {
                 storage(false),
                 storage(false),
                 storage(false),
+                storage(false),
             ],
         );
         let retry_args_layout = layout(device, "gi cuts retry arguments", &[storage(false)]);
@@ -164,6 +174,7 @@ impl Gather {
                 storage(true),
                 S::Texture,
                 S::StorageTexture(wgpu::TextureFormat::Rgba32Float),
+                storage(true),
             ],
         );
         let cuts_module = module(device, "gi cuts", CUTS_SHADER);
@@ -232,6 +243,7 @@ impl Gather {
                 R::Buffer(t.stats),
                 R::Buffer(t.lights),
                 R::Buffer(&retry.retry),
+                R::Buffer(t.receivers),
             ],
         );
         let retry_args = bind(device, &self.retry_args_layout, &[R::Buffer(&retry.retry_args)]);
@@ -247,6 +259,7 @@ impl Gather {
                 R::Buffer(t.cuts),
                 R::View(t.accumulate),
                 R::View(t.bounce),
+                R::Buffer(t.receivers),
             ],
         );
         let mut pass = encoder

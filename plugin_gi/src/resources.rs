@@ -19,6 +19,9 @@ pub(crate) struct GiResources {
     /// Every tile's cut, kept across frames, shared by every bounce's gather.
     pub cuts: Handle<Buffer>,
     pub irradiance: Handle<Image>,
+    /// The G-buffer texel each receiver of the indirect target is evaluated on, one u32 each
+    /// (x | y << 16), found by the cuts pass for the gather and temporal passes.
+    pub receivers: Handle<Buffer>,
     /// The irradiance blended over frames (`gi_temporal`), which the composite upsamples.
     pub history: History<Image>,
     pub stats: Handle<Buffer>,
@@ -65,6 +68,7 @@ impl GiResources {
             nodes: ctx.persistent_buffer("gi.nodes"),
             cuts: ctx.persistent_buffer("gi.cuts"),
             irradiance: ctx.image(names::IRRADIANCE),
+            receivers: ctx.buffer("gi.receivers"),
             history: ctx.history_image(names::IRRADIANCE_HISTORY),
             stats: ctx.buffer(names::STATS),
             lights: ctx.buffer(names::LIGHTS),

@@ -79,7 +79,9 @@ fn quarter(i: u32) -> u32 {
     return u32((i % CUT_TILE) >= CUT_TILE / 2u) + 2u * u32((i / CUT_TILE) >= CUT_TILE / 2u);
 }
 
-fn tile_bounds(origin: vec2u) -> TileBounds {
+// (`recorded`: the tile's receivers as `main` recorded them in `receiver_texels`; otherwise
+// found and recorded.)
+fn tile_bounds(origin: vec2u, recorded: bool) -> TileBounds {
     var b: TileBounds;
     let view = textureDimensions(gbuffer_normal);
     // The tile's receivers where the gather evaluates them: position and view depth (w < 0
@@ -94,7 +96,14 @@ fn tile_bounds(origin: vec2u) -> TileBounds {
         points[i] = vec4f(0.0, 0.0, 0.0, -1.0);
         let q = origin + vec2u(i % CUT_TILE, i / CUT_TILE);
         if all(q < params.indirect_size) {
-            let g = receiver_at(q, view, params.indirect_size);
+            let slot = q.y * params.indirect_size.x + q.x;
+            var g: vec2i;
+            if recorded {
+                g = unpack_texel(receiver_texels[slot]);
+            } else {
+                g = receiver_at(q, view, params.indirect_size);
+                receiver_texels[slot] = pack_texel(g);
+            }
             let n = textureLoad(gbuffer_normal, g, 0);
             if n.w > 0.0 {
                 let x = textureLoad(gbuffer_position, g, 0);
@@ -441,6 +450,9 @@ struct RetryList {
     tiles: array<vec2u>,
 };
 @group(1) @binding(8) var<storage, read_write> retry: RetryList;
+// The G-buffer texel each receiver is evaluated on (`receiver_at`, which costs a dozen texel
+// loads): found here once a frame, for the gather and temporal passes.
+@group(1) @binding(9) var<storage, read_write> receiver_texels: array<u32>;
 
 // The arguments of the indirect dispatch of `retry_full_tiles`: a workgroup per CUTS_GROUP
 // full tiles. Only `main` binds it (the retry dispatch reads it as its arguments).
@@ -469,7 +481,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     }
     let tile = place.xy;
     let base = slot * tile_stride();
-    let b = tile_bounds(tile * CUT_TILE);
+    let b = tile_bounds(tile * CUT_TILE, false);
     cuts[base + 1u] = vec4u(bitcast<vec3u>(b.sphere.xyz), 0u);
     var w = Walk(0u, 0u, 0u, vec4u(0u), 1.0, 0u);
     if b.count > 0u {
@@ -501,7 +513,7 @@ fn retry_full_tiles(@builtin(global_invocation_id) id: vec3u) {
     let slot = entry.x;
     let tile = slot_tile(slot).xy;
     let base = slot * tile_stride();
-    let b = tile_bounds(tile * CUT_TILE);
+    let b = tile_bounds(tile * CUT_TILE, true);
     let top = PYRAMID_LEVELS - 1u;
     var floor = params.min_level;
     var ratio = bitcast<f32>(entry.y);

@@ -23,6 +23,8 @@
 // bounce's irradiance alone, for the next bounce's flux.
 @group(1) @binding(6) var accumulate: texture_2d<f32>;
 @group(1) @binding(7) var bounce_out: texture_storage_2d<rgba32float, write>;
+// Where each receiver is evaluated, as the cuts pass found it (receivers.wgsl).
+@group(1) @binding(8) var<storage, read> receiver_texels: array<u32>;
 
 // The tile's receivers: position, and the normal packed in w (NO_NORMAL where there is no
 // surface), so a neighbour is one load.
@@ -133,7 +135,7 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     var depth = 0.0;
     var g = vec2i(0);
     if in_view {
-        g = receiver_at(q, textureDimensions(gbuffer_normal), params.indirect_size);
+        g = unpack_texel(receiver_texels[q.y * params.indirect_size.x + q.x]);
         n = textureLoad(gbuffer_normal, g, 0);
         let position = textureLoad(gbuffer_position, g, 0);
         x = position.xyz;

@@ -231,6 +231,16 @@ fn receiver_texel(q: vec2u, view: vec2u, indirect: vec2u) -> vec2i {
     return vec2i((vec2f(q) + 0.5) * vec2f(view) / vec2f(indirect));
 }
 
+// A receiver's G-buffer texel as the cuts pass records it for the gather and temporal passes
+// (`receiver_texels`, one a receiver, row by row): x and y in 16 bits each.
+fn pack_texel(t: vec2i) -> u32 {
+    return u32(t.x) | (u32(t.y) << 16u);
+}
+
+fn unpack_texel(v: u32) -> vec2i {
+    return vec2i(i32(v & 0xffffu), i32(v >> 16u));
+}
+
 // Where pixel centre p of a `view`-sized frame lies among the samples of an `indirect`-sized
 // target: `base` the sample before it on each axis, `f` its place towards the next (0 at
 // base, 1 at the next; outside that range beyond the target's edge samples). Taken from

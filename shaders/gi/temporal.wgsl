@@ -9,7 +9,6 @@
 // `temporal.blend.z`: a light switched off or an object moved out of the beam leaves no trail.
 #include "common.wgsl"
 #include "gi_common.wgsl"
-#include "receivers.wgsl"
 
 struct TemporalParams {
     // Last frame's view-projection: where a world point was on screen.
@@ -25,8 +24,8 @@ struct TemporalParams {
 @group(1) @binding(3) var history: texture_2d<f32>;
 @group(1) @binding(4) var gbuffer_position: texture_2d<f32>;
 @group(1) @binding(5) var blended: texture_storage_2d<rgba32float, write>;
-// (For where each receiver was evaluated: receivers.wgsl.)
-@group(1) @binding(6) var gbuffer_normal: texture_2d<f32>;
+// Where each receiver was evaluated, as the cuts pass found it (receivers.wgsl).
+@group(1) @binding(6) var<storage, read> receiver_texels: array<u32>;
 
 // Relative view-depth difference within which a sample lies on the same surface.
 const DEPTH_TOLERANCE: f32 = 0.05;
@@ -97,7 +96,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let full = vec2f(textureDimensions(gbuffer_position));
-    let at = receiver_at(vec2u(q), vec2u(full), vec2u(low));
+    let at = unpack_texel(receiver_texels[u32(q.y * low.x + q.x)]);
     let x = textureLoad(gbuffer_position, at, 0).xyz;
     let depth = receiver_depth(c.w);
     let n = receiver_normal(c.w);

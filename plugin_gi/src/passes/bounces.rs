@@ -35,6 +35,7 @@ pub struct BounceIo {
     stats: Write<Buffer>,
     lights: Write<Buffer>,
     cuts: Write<Buffer>,
+    receivers: Write<Buffer>,
     irradiance: Write<Image>,
     layout: CutsLayout,
     flux_size: (u32, u32),
@@ -80,6 +81,7 @@ impl RenderPass for BouncePass {
             stats: d.create(b.stats, stats_desc()),
             lights: d.create(b.lights, lights_desc()),
             cuts: d.write(self.gi.cuts),
+            receivers: d.write(self.gi.receivers),
             irradiance: d.write(self.gi.irradiance),
             layout: cuts_layout(low, flux),
             flux_size: flux,
@@ -126,6 +128,7 @@ impl RenderPass for BouncePass {
                 bounce: ctx.view(dst),
                 stats: ctx.buffer(&io.stats),
                 lights: ctx.buffer(&io.lights),
+                receivers: ctx.buffer(&io.receivers),
             };
             dispatches += self.gather.record(device, ctx.encoder, ctx.frame.globals, io.layout, &targets);
         }

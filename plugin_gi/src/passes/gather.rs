@@ -5,7 +5,7 @@ use engine::passes::CoreResources;
 use engine::wgpu;
 
 use super::params::{fixed, flux_size, indirect_size};
-use crate::gather::{cuts_desc, cuts_layout, CutsLayout, Gather, GatherTargets};
+use crate::gather::{cuts_desc, cuts_layout, receivers_desc, CutsLayout, Gather, GatherTargets};
 use crate::gpu_types::{CENTRE_LIGHTS, GATHER_STATS_SIZE};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
@@ -29,6 +29,7 @@ pub struct GatherIo {
     irradiance: Write<Image>,
     stats: Write<Buffer>,
     lights: Write<Buffer>,
+    receivers: Write<Buffer>,
     layout: CutsLayout,
 }
 
@@ -108,6 +109,7 @@ impl RenderPass for GatherPass {
             irradiance: d.create(gi.irradiance, irradiance_texture(size)),
             stats: d.create(gi.stats, stats_desc()),
             lights: d.create(gi.lights, lights_desc()),
+            receivers: d.create(gi.receivers, receivers_desc(size)),
             layout,
         }
     }
@@ -125,6 +127,7 @@ impl RenderPass for GatherPass {
             bounce: &self.sinks[1],
             stats: ctx.buffer(&io.stats),
             lights: ctx.buffer(&io.lights),
+            receivers: ctx.buffer(&io.receivers),
         };
         let dispatches = self.gather.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, io.layout, &targets);
         ctx.count_dispatches(dispatches);

@@ -58,6 +58,7 @@ pub struct TemporalPass {
     core: CoreResources,
     params: engine::graph::Handle<Buffer>,
     irradiance: engine::graph::Handle<Image>,
+    receivers: engine::graph::Handle<Buffer>,
     history: History<Image>,
     uniform: wgpu::Buffer,
     layout: wgpu::BindGroupLayout,
@@ -75,7 +76,7 @@ pub struct TemporalIo {
     previous: Read<Image>,
     position: Read<Image>,
     blended: Write<Image>,
-    normal: Read<Image>,
+    receivers: Read<Buffer>,
     size: (u32, u32),
 }
 
@@ -94,7 +95,7 @@ impl TemporalPass {
             S::Texture,
             S::Texture,
             S::StorageTexture(IRRADIANCE_FORMAT),
-            S::Texture,
+            S::Storage { read_only: true },
         ];
         let layout = layout(device, "gi temporal", &slots);
         let module = crate::shader::module(device, "gi temporal", SHADER);
@@ -105,6 +106,7 @@ impl TemporalPass {
             core,
             params: gi.params,
             irradiance: gi.irradiance,
+            receivers: gi.receivers,
             history: gi.history,
             uniform,
             layout,
@@ -135,7 +137,7 @@ impl RenderPass for TemporalPass {
             previous: d.read(self.history.previous()),
             position: d.read(self.core.gbuffer.position),
             blended: d.create(self.history.current(), irradiance_texture(size)),
-            normal: d.read(self.core.gbuffer.normal),
+            receivers: d.read(self.receivers),
             size,
         })
     }
@@ -170,7 +172,7 @@ impl RenderPass for TemporalPass {
                 R::View(ctx.view(&io.previous)),
                 R::View(ctx.view(&io.position)),
                 R::View(ctx.view(&io.blended)),
-                R::View(ctx.view(&io.normal)),
+                R::Buffer(ctx.buffer(&io.receivers)),
             ],
         );
         let mut pass = ctx
