@@ -46,7 +46,11 @@ engine::gpu_struct! {
         pub interleave: u32,
         /// The side in lamp-view texels of one flux G-buffer texel (a power of two).
         pub flux_block: u32,
-        pub pad: [u32; 2],
+        /// Where the receivers' and the flux G-buffer's grids lie this frame (see `grids`).
+        pub receiver_offset: [f32; 2],
+        pub sender_offset: [f32; 2],
+        pub receiver_parity: u32,
+        pub pad: u32,
         /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin,
         /// its forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a
         /// texel's corner rays follow from its index: the reference's footprints in its near
@@ -138,6 +142,8 @@ engine::gpu_struct! {
         pub previous_view_proj: [[f32; 4]; 4],
         /// This frame's weight, 1 with history, the history's slack.
         pub blend: [f32; 4],
+        /// Last frame's `GiParams::receiver_offset` (x, y; z and w unused).
+        pub previous_offset: [f32; 4],
     }
 }
 

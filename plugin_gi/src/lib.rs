@@ -10,6 +10,7 @@
 mod bindings;
 mod gather;
 pub mod gpu_types;
+mod grids;
 pub mod metrics;
 mod passes;
 mod pyramid;

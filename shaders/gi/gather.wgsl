@@ -45,9 +45,11 @@ fn same_surface(x: vec3f, n: vec3f, d: f32, b: u32) -> bool {
         && on_plane(x, n, d, other.xyz, unpack_normal(packed));
 }
 
-// The class of lights the receiver at tile position p evaluates itself.
+// The class of lights the receiver at tile position p evaluates itself: a 2×2 pattern that
+// stays on its world points as the receivers' grid steps back (GiParams.receiver_parity).
 fn light_class(p: vec2i) -> u32 {
-    return u32(p.x & 1) + 2u * u32(p.y & 1);
+    let stepped = vec2i(i32(params.receiver_parity & 1u), i32(params.receiver_parity >> 1u));
+    return u32((p.x + stepped.x) & 1) + 2u * u32((p.y + stepped.y) & 1);
 }
 
 // Neighbour k of p's 3×3 (k = (dy + 1) * 3 + dx + 1; 4 is p itself).

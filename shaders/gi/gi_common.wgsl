@@ -50,8 +50,16 @@ struct GiParams {
     interleave: u32,
     // The side in lamp-view texels of one flux G-buffer texel (a power of two).
     flux_block: u32,
-    pad0: u32,
-    pad1: u32,
+    // Where the receivers' grid lies this frame, in cells (−½ to ½ each way), and how many
+    // lamp-view texels before the view's corner the flux G-buffer's blocks begin: both grids
+    // move with the picture as the camera turns, so receivers and senders keep to their world
+    // points (plugin_gi/src/grids.rs).
+    receiver_offset: vec2f,
+    sender_offset: vec2f,
+    // The parity of the whole cells the receivers' grid has stepped back (bit 0 across, bit 1
+    // down), which the gather's interleave pattern follows (gather.wgsl's `light_class`).
+    receiver_parity: u32,
+    pad: u32,
     // The frame the lamp view was rendered from: origin, forward axis, and right and up axes
     // scaled by lamp_tan, so a texel's corner rays follow from its index.
     view_origin: vec4f,
@@ -226,9 +234,10 @@ fn lamp_reflected_flux(rho: vec3f, x: vec3f, omega: f32) -> vec3f {
 }
 
 // The G-buffer texel that receiver q of an `indirect`-sized target stands for (the one at its
-// footprint's centre in a `view`-sized G-buffer).
-fn receiver_texel(q: vec2u, view: vec2u, indirect: vec2u) -> vec2i {
-    return vec2i((vec2f(q) + 0.5) * vec2f(view) / vec2f(indirect));
+// footprint's centre in a `view`-sized G-buffer), its grid shifted by `offset` cells (this
+// frame's GiParams.receiver_offset, or last frame's for its samples).
+fn receiver_texel(q: vec2u, view: vec2u, indirect: vec2u, offset: vec2f) -> vec2i {
+    return min(vec2i((vec2f(q) + 0.5 + offset) * vec2f(view) / vec2f(indirect)), vec2i(view) - 1);
 }
 
 // A receiver's G-buffer texel as the cuts pass records it for the gather and temporal passes
@@ -251,18 +260,18 @@ struct SamplePlace {
     f: vec2f,
 };
 
-fn sample_place(p: vec2f, view: vec2u, indirect: vec2u) -> SamplePlace {
+fn sample_place(p: vec2f, view: vec2u, indirect: vec2u, offset: vec2f) -> SamplePlace {
     let low = vec2i(indirect);
-    var base = max(min(vec2i(floor(p * vec2f(indirect) / vec2f(view) - 0.5)), low - 2), vec2i(0));
-    base -= vec2i((p < sample_centre(base, view, indirect)) & (base > vec2i(0)));
-    base += vec2i((p > sample_centre(base + 1, view, indirect)) & (base + 2 < low));
-    let c0 = sample_centre(base, view, indirect);
-    return SamplePlace(base, (p - c0) / max(sample_centre(base + 1, view, indirect) - c0, vec2f(1e-6)));
+    var base = max(min(vec2i(floor(p * vec2f(indirect) / vec2f(view) - 0.5 - offset)), low - 2), vec2i(0));
+    base -= vec2i((p < sample_centre(base, view, indirect, offset)) & (base > vec2i(0)));
+    base += vec2i((p > sample_centre(base + 1, view, indirect, offset)) & (base + 2 < low));
+    let c0 = sample_centre(base, view, indirect, offset);
+    return SamplePlace(base, (p - c0) / max(sample_centre(base + 1, view, indirect, offset) - c0, vec2f(1e-6)));
 }
 
 // Where the gather evaluated sample s (s ≥ 0) of an `indirect`-sized target, in pixels.
-fn sample_centre(s: vec2i, view: vec2u, indirect: vec2u) -> vec2f {
-    return vec2f(receiver_texel(vec2u(s), view, indirect)) + 0.5;
+fn sample_centre(s: vec2i, view: vec2u, indirect: vec2u, offset: vec2f) -> vec2f {
+    return vec2f(receiver_texel(vec2u(s), view, indirect, offset)) + 0.5;
 }
 
 // Whether a surface point y (normal m) lies on the plane of the receiver at x (normal n), seen

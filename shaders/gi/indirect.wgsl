@@ -40,7 +40,7 @@ fn indirect_radiance(p: vec2i) -> vec4f {
     let full = textureDimensions(gbuffer_normal);
     let low = vec2i(params.indirect_size);
     // The two samples on either side of p along each axis, and p's place between them.
-    let place = sample_place(vec2f(p) + 0.5, full, params.indirect_size);
+    let place = sample_place(vec2f(p) + 0.5, full, params.indirect_size, params.receiver_offset);
     let base = place.base;
     let f = clamp(place.f, vec2f(0.0), vec2f(1.0));
     var sum = vec3f(0.0);

@@ -65,7 +65,7 @@ fn reduce_three_levels(local: vec2u, group: vec2u, base: u32) {
 
 // One texel of the lamp view (at `t`, of a view of `view` texels) as a light: zero flux where
 // nothing is seen or nothing is lit.
-fn view_texel_node(t: vec2u, view: vec2u, flux_texel: vec2u) -> Node {
+fn view_texel_node(t: vec2u, view: vec2u) -> Node {
     var node: Node;
     node.merged = 1u;
     if any(t >= view) {
@@ -82,7 +82,9 @@ fn view_texel_node(t: vec2u, view: vec2u, flux_texel: vec2u) -> Node {
     if params.source == 0u {
         node.flux = lamp_reflected_flux(rho, x, omega);
     } else {
-        let low = vec2u(vec2f(flux_texel) * vec2f(params.indirect_size) / vec2f(params.flux_size));
+        // The irradiance sample nearest the texel's (receiver_texel's inverse).
+        let cells = (vec2f(t) + 0.5) * vec2f(params.indirect_size) / vec2f(view) - 0.5 - params.receiver_offset;
+        let low = vec2u(clamp(vec2i(round(cells)), vec2i(0), vec2i(params.indirect_size) - 1));
         let e = textureLoad(previous_irradiance, vec2i(low), 0).rgb;
         node.flux = rho * e * area;
     }
@@ -156,7 +158,7 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     let step = max(k / 4u, 1u);
     let n = k / step;
     for (var j = 0u; j < n * n; j++) {
-        var texel = view_texel_node(t + vec2u(j % n, j / n) * step, view, id);
+        var texel = view_texel_node(t + vec2u(j % n, j / n) * step, view);
         let share = f32(step * step);
         texel.flux *= share;
         texel.area *= share;
@@ -202,15 +204,21 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
 // surface as the view moved and made the senders shimmer).
 fn texel_node(id: vec2u) -> Node {
     let view = textureDimensions(gbuffer_normal);
-    // The block's side: the power of two the view was halved by (flux_size = ⌈view / k⌉).
+    // The block's side: the power of two the view was halved by. Blocks begin
+    // `sender_offset` texels before the view's corner, and their grid moves with the picture
+    // (plugin_gi/src/grids.rs), so flux_size = ⌈view / k⌉ + SENDER_PAD. Texels before the
+    // corner wrap to beyond the view, which holds nothing.
     let k = params.flux_block;
     var node: Node;
+    var omega: f32;
     if k == 1u {
-        node = view_texel_node(id, view, id);
+        node = view_texel_node(id, view);
+        omega = texel_solid_angle(id, params.flux_size, params.lamp_tan);
     } else {
-        node = block_node(id * k, k, view, id);
+        let first = vec2u(vec2i(id * k) - vec2i(params.sender_offset));
+        node = block_node(first, k, view, id);
+        omega = texel_solid_angle(min(first + k / 2u, view - 1u), view, params.lamp_tan) * f32(k * k);
     }
-    let omega = texel_solid_angle(id, params.flux_size, params.lamp_tan);
     textureStore(flux_out, vec2i(id), vec4f(node.flux, 1.0));
     // The flux view: Φ per unit lamp solid angle relative to the lamp power, i.e. ρ·T(ω).
     textureStore(flux_view_out, vec2i(id), vec4f(node.flux / (omega * max(params.lamp_power, 1e-20)), 1.0));

@@ -41,7 +41,7 @@ fn at_a_neighbour(s: SurfacePoint, q: vec2i, view: vec2u, indirect: vec2u) -> bo
         let o = select(vec2i(0, 2 * (k & 1) - 1), vec2i(2 * (k & 1) - 1, 0), k < 2);
         let r = q + o;
         if all(r >= vec2i(0)) && all(r < vec2i(indirect)) {
-            found = found || same_plane(s, surface_point(receiver_texel(vec2u(r), view, indirect)));
+            found = found || same_plane(s, surface_point(receiver_texel(vec2u(r), view, indirect, params.receiver_offset)));
         }
     }
     return found;
@@ -50,7 +50,7 @@ fn at_a_neighbour(s: SurfacePoint, q: vec2i, view: vec2u, indirect: vec2u) -> bo
 // The G-buffer texel receiver q is evaluated on (see above): the cell's centre, or the first
 // of the centres of its four quarters that shows a surface no neighbouring centre shows.
 fn receiver_at(q: vec2u, view: vec2u, indirect: vec2u) -> vec2i {
-    let c = receiver_texel(q, view, indirect);
+    let c = receiver_texel(q, view, indirect, params.receiver_offset);
     let centre = surface_point(c);
     let qi = vec2i(q);
     if centre.valid && !at_a_neighbour(centre, qi, view, indirect) {
@@ -59,7 +59,8 @@ fn receiver_at(q: vec2u, view: vec2u, indirect: vec2u) -> vec2i {
     let cell = vec2f(view) / vec2f(indirect);
     for (var k = 0; k < 4; k++) {
         // (In a cell one texel wide each way this is its centre again, and is passed over.)
-        let t = vec2i((vec2f(q) + vec2f(0.25 + 0.5 * f32(k & 1), 0.25 + 0.5 * f32(k >> 1u))) * cell);
+        let corner = vec2f(q) + params.receiver_offset;
+        let t = min(vec2i((corner + vec2f(0.25 + 0.5 * f32(k & 1), 0.25 + 0.5 * f32(k >> 1u))) * cell), vec2i(view) - 1);
         let s = surface_point(t);
         if s.valid && !(centre.valid && same_plane(centre, s)) && !at_a_neighbour(s, qi, view, indirect) {
             return t;

@@ -16,6 +16,8 @@ struct TemporalParams {
     // x: weight of this frame (1 = no history); y: 1 when last frame's irradiance is in
     // `history`; z: how far history may lie outside this frame's neighbourhood, relative.
     blend: vec4f,
+    // Last frame's GiParams.receiver_offset (xy): where last frame's samples lay.
+    previous_offset: vec4f,
 };
 
 @group(1) @binding(0) var<uniform> params: GiParams;
@@ -50,7 +52,7 @@ fn reprojected(x: vec3f, n: vec3f, full: vec2f, low: vec2i, offset: vec2f) -> ve
     let pixel = vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * full - offset;
     // The samples about it, and its place between them, as the composite finds them, so a
     // still view takes each sample's own history.
-    let place = sample_place(pixel, vec2u(full), vec2u(low));
+    let place = sample_place(pixel, vec2u(full), vec2u(low), temporal.previous_offset.xy);
     let base = place.base;
     var f = place.f;
     // On a sample to rounding (a still view): that sample alone, so nothing drifts.
@@ -100,7 +102,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     let x = textureLoad(gbuffer_position, at, 0).xyz;
     let depth = receiver_depth(c.w);
     let n = receiver_normal(c.w);
-    let previous = reprojected(x, n, full, low, vec2f(at - receiver_texel(vec2u(q), vec2u(full), vec2u(low))));
+    let previous = reprojected(x, n, full, low, vec2f(at - receiver_texel(vec2u(q), vec2u(full), vec2u(low), params.receiver_offset)));
     if previous.w == 0.0 {
         textureStore(blended, q, c);
         return;

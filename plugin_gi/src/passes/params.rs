@@ -8,6 +8,7 @@ use engine::passes::{GBuffer, LAMP_MAP_SIZE};
 use engine::wgpu;
 
 use crate::gpu_types::GiParams;
+use crate::grids::{Grids, SENDER_PAD};
 use crate::settings::GiSettings;
 use crate::shared::GiHandle;
 
@@ -59,7 +60,9 @@ pub(crate) fn flux_blocks(settings: &GiSettings, size: (u32, u32), attached: boo
 pub(crate) fn flux_size(settings: &GiSettings, size: (u32, u32), attached: bool) -> (u32, u32) {
     let (w, h) = lamp_view_size(size, attached);
     let k = halvings(settings, size, attached);
-    (w.max(1).div_ceil(1 << k), h.max(1).div_ceil(1 << k))
+    // Blocks move with the picture (crate::grids): room for the grid's step back.
+    let pad = if k > 0 { SENDER_PAD } else { 0 };
+    (w.max(1).div_ceil(1 << k) + pad, h.max(1).div_ceil(1 << k) + pad)
 }
 
 /// Size of the irradiance target: the settings' rule, made smaller only where its cuts would
@@ -82,6 +85,8 @@ pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: u32) 
     let indirect = indirect_size(settings, size);
     let lamp = ctx.frame.lamp;
     let tan_y = (lamp.fov_y * 0.5).tan();
+    let block = 1 << halvings(settings, size, attached);
+    let grids = Grids::of(&ctx.frame.view.camera, size, indirect, block);
     GiParams {
         flux_size: [flux.0, flux.1],
         indirect_size: indirect.into(),
@@ -94,8 +99,11 @@ pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: u32) 
         min_level: crate::settings::min_level(size.1, indirect.1).saturating_sub(halvings(settings, size, attached)),
         source,
         interleave: settings.interleave,
-        flux_block: 1 << halvings(settings, size, attached),
-        pad: [0; 2],
+        flux_block: block,
+        receiver_offset: grids.receiver_offset,
+        sender_offset: grids.sender_offset,
+        receiver_parity: grids.receiver_parity,
+        pad: 0,
         view_origin: lamp.position.extend(1.0).to_array(),
         view_forward: (lamp.rotation * Vec3::NEG_Z).extend(0.0).to_array(),
         view_right: (lamp.rotation * Vec3::X * tan_y * lamp.aspect).extend(0.0).to_array(),
@@ -141,14 +149,25 @@ mod tests {
     #[test]
     fn halving_toward_the_indirect_target_stops_before_it_gets_shorter() {
         let mut s = GiSettings { resolution_scale: 0.25, min_rows: 90, ..GiSettings::default() };
-        let rule = |s: &GiSettings, view| flux_size(s, view, true);
+        // Blocks of lamp-view texels: their grid moves with the picture, SENDER_PAD more of them.
+        let rule = |s: &GiSettings, view| {
+            let (w, h) = flux_size(s, view, true);
+            if halvings(s, view, true) > 0 {
+                (w - SENDER_PAD, h - SENDER_PAD)
+            } else {
+                (w, h)
+            }
+        };
         // 360 rows → 180 → 90: two halvings reach the 90-row target exactly.
         assert_eq!(rule(&s, (640, 360)), (160, 90));
+        assert_eq!(flux_size(&s, (640, 360), true), (160 + SENDER_PAD, 90 + SENDER_PAD));
         // 720 rows: a quarter is 180 rows, so two halvings; a third would give 90 < 180.
         assert_eq!(rule(&s, (1280, 720)), (320, 180));
         // 240 rows: the target is 90; 120 ≥ 90 but 60 < 90.
         assert_eq!(rule(&s, (320, 240)), (160, 120));
+        // No halving: the lamp view's own texels, no padding.
         assert_eq!(rule(&s, (160, 120)), (160, 120));
+        assert_eq!(flux_size(&s, (160, 120), true), (160, 120));
         assert_eq!(rule(&s, (1281, 721)), (321, 181));
         // Never more than three halvings.
         s.resolution_scale = 0.0625;

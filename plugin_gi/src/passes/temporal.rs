@@ -16,6 +16,7 @@ use super::gather::{irradiance_texture, IRRADIANCE_FORMAT};
 use super::params::indirect_size;
 use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
 use crate::gpu_types::TemporalParams;
+use crate::grids::Grids;
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
 
@@ -63,9 +64,9 @@ pub struct TemporalPass {
     uniform: wgpu::Buffer,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
-    /// The view-projection, the lamp and what it emitted in the frame whose result `history`
-    /// holds.
-    previous: Option<(Mat4, LampFrustum, Emission)>,
+    /// The view-projection, the lamp, what it emitted and where the receivers lay in the frame
+    /// whose result `history` holds.
+    previous: Option<(Mat4, LampFrustum, Emission, [f32; 2])>,
     /// Set by a frame with the GI off (which runs nothing here): the history is stale then.
     skipped: Cell<bool>,
 }
@@ -154,14 +155,17 @@ impl RenderPass for TemporalPass {
         let view_proj = ctx.frame.view.camera.view_projection(w as f32 / h.max(1) as f32);
         let (lamp, emission) = (ctx.frame.lamp, Emission::of(ctx.frame.view));
         let previous = self.previous.filter(|p| ctx.history_frames(&io.previous) > 0 && p.2 == emission);
-        let steadiness = previous.map_or(0.0, |(_, before, _)| lamp_steadiness(&before, &lamp));
+        let steadiness = previous.map_or(0.0, |(_, before, ..)| lamp_steadiness(&before, &lamp));
+        // (The receivers' grid alone: where this frame's samples lie, for the next frame.)
+        let offset = Grids::of(&ctx.frame.view.camera, ctx.frame.size, io.size, 1).receiver_offset;
         let history = self.handle.settings().history * steadiness;
         let value = TemporalParams {
             previous_view_proj: previous.map_or(view_proj, |(m, ..)| m).to_cols_array_2d(),
             blend: [1.0 - history, if history > 0.0 { 1.0 } else { 0.0 }, HISTORY_SLACK, 0.0],
+            previous_offset: previous.map_or([offset[0], offset[1], 0.0, 0.0], |p| [p.3[0], p.3[1], 0.0, 0.0]),
         };
         ctx.gpu.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&value));
-        self.previous = Some((view_proj, lamp, emission));
+        self.previous = Some((view_proj, lamp, emission, offset));
         let group = bind(
             &ctx.gpu.device,
             &self.layout,
