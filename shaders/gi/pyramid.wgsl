@@ -211,6 +211,8 @@ fn texel_node(id: vec2u) -> Node {
     let k = params.flux_block;
     var node: Node;
     var omega: f32;
+    // Where the flux view (one texel a block over the view, no padding) shows it.
+    var shown = vec2i(id);
     if k == 1u {
         node = view_texel_node(id, view);
         omega = texel_solid_angle(id, params.flux_size, params.lamp_tan);
@@ -218,10 +220,12 @@ fn texel_node(id: vec2u) -> Node {
         let first = vec2u(vec2i(id * k) - vec2i(params.sender_offset));
         node = block_node(first, k, view, id);
         omega = texel_solid_angle(min(first + k / 2u, view - 1u), view, params.lamp_tan) * f32(k * k);
+        shown -= vec2i(round(params.sender_offset / f32(k)));
     }
     textureStore(flux_out, vec2i(id), vec4f(node.flux, 1.0));
-    // The flux view: Φ per unit lamp solid angle relative to the lamp power, i.e. ρ·T(ω).
-    textureStore(flux_view_out, vec2i(id), vec4f(node.flux / (omega * max(params.lamp_power, 1e-20)), 1.0));
+    // The flux view: Φ per unit lamp solid angle relative to the lamp power, i.e. ρ·T(ω). (A
+    // store outside the texture is dropped.)
+    textureStore(flux_view_out, shown, vec4f(node.flux / (omega * max(params.lamp_power, 1e-20)), 1.0));
     return node;
 }
 

@@ -4,7 +4,7 @@ use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, RenderPass, Text
 use engine::passes::CoreResources;
 use engine::wgpu;
 
-use super::params::{fixed, flux_blocks, flux_size, lamp_view};
+use super::params::{fixed, flux_blocks, flux_size, flux_view_size, lamp_view};
 use crate::gpu_types::Levels;
 use crate::pyramid::{levels_desc, nodes_desc, PyramidBindings, PyramidPipelines};
 use crate::quadtree::Quadtree;
@@ -65,7 +65,13 @@ impl RenderPass for FluxPass {
             params: d.read(self.gi.params),
             lamp: [lamp.albedo, lamp.normal, lamp.position].map(|h| d.read(h)),
             flux: d.create(self.gi.flux, flux_texture(wgpu::TextureFormat::Rgba32Float, size)),
-            flux_view: d.create(self.gi.flux_view, flux_texture(wgpu::TextureFormat::Rgba16Float, size)),
+            flux_view: d.create(
+                self.gi.flux_view,
+                flux_texture(
+                    wgpu::TextureFormat::Rgba16Float,
+                    flux_view_size(&self.settings.settings(), d.size(), attached),
+                ),
+            ),
             levels: d.create(self.gi.levels, levels_desc()),
             nodes: d.create(self.gi.nodes, nodes_desc(size, blocks)),
             size,

@@ -56,13 +56,20 @@ pub(crate) fn flux_blocks(settings: &GiSettings, size: (u32, u32), attached: boo
     halvings(settings, size, attached) > 0
 }
 
-/// Size of the flux G-buffer (the pyramid's base).
+/// Size of the flux G-buffer (the pyramid's base): the lamp view's blocks, and where they are
+/// blocks of several texels, SENDER_PAD more each way, as their grid moves with the picture
+/// (crate::grids).
 pub(crate) fn flux_size(settings: &GiSettings, size: (u32, u32), attached: bool) -> (u32, u32) {
+    let (w, h) = flux_view_size(settings, size, attached);
+    let pad = if halvings(settings, size, attached) > 0 { SENDER_PAD } else { 0 };
+    (w + pad, h + pad)
+}
+
+/// Size of the `flux` view: the blocks that cover the lamp view, ⌈view / k⌉ each way.
+pub(crate) fn flux_view_size(settings: &GiSettings, size: (u32, u32), attached: bool) -> (u32, u32) {
     let (w, h) = lamp_view_size(size, attached);
     let k = halvings(settings, size, attached);
-    // Blocks move with the picture (crate::grids): room for the grid's step back.
-    let pad = if k > 0 { SENDER_PAD } else { 0 };
-    (w.max(1).div_ceil(1 << k) + pad, h.max(1).div_ceil(1 << k) + pad)
+    (w.max(1).div_ceil(1 << k), h.max(1).div_ceil(1 << k))
 }
 
 /// Size of the irradiance target: the settings' rule, made smaller only where its cuts would
