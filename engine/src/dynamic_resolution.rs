@@ -19,6 +19,8 @@ pub struct DynamicResolution {
     window: Vec<f32>,
     /// Frames still ignored after a change (the change's own frame reallocates the targets).
     settling: u32,
+    /// Windows in a row that were too slow at the floor: the scale alone cannot hold the target.
+    starved_windows: u32,
 }
 
 impl DynamicResolution {
@@ -36,6 +38,8 @@ impl DynamicResolution {
     const SLOW: f32 = 1.05;
     /// …and grow only while the predicted frame stays under the target by this one.
     const ROOM: f32 = 0.95;
+    /// Slow windows in a row at the floor before [`Self::starved`].
+    pub const STARVED_WINDOWS: u32 = 3;
 
     /// Holds `target_fps` with a render scale between [`Self::MIN_SCALE`] and `max_scale`,
     /// starting at `max_scale`.
@@ -49,7 +53,14 @@ impl DynamicResolution {
             scale: max,
             window: Vec::with_capacity(Self::WINDOW),
             settling: 0,
+            starved_windows: 0,
         }
+    }
+
+    /// Whether the target has not held for [`Self::STARVED_WINDOWS`] windows in a row with the
+    /// scale at its floor: what else the frame costs must give (the caller's to choose).
+    pub fn starved(&self) -> bool {
+        self.starved_windows >= Self::STARVED_WINDOWS
     }
 
     /// The scale to render at now.
@@ -83,6 +94,8 @@ impl DynamicResolution {
         self.window.sort_by(f32::total_cmp);
         let median = self.window[Self::WINDOW / 2];
         self.window.clear();
+        let slow_at_floor = self.scale <= self.min && median > self.target_s * Self::SLOW;
+        self.starved_windows = if slow_at_floor { self.starved_windows + 1 } else { 0 };
         let wanted = if median > self.target_s * Self::SLOW {
             self.scale * (self.target_s / median).sqrt()
         } else {
@@ -169,6 +182,23 @@ mod tests {
             assert_eq!(d.push(dt), None);
         }
         assert_eq!(d.scale(), 0.8);
+    }
+
+    #[test]
+    fn too_slow_at_the_floor_is_starved_and_a_lighter_frame_is_not() {
+        let mut d = DynamicResolution::new(20.0, 0.5);
+        run(&mut d, 60, |s| frame(0.040, 0.100, s));
+        assert!(!d.starved(), "20 fps holds at some scale above the floor: {}", d.scale());
+        // 70 ms even at the floor: the scale cannot hold 20 fps.
+        let mut d = DynamicResolution::new(20.0, 0.5);
+        run(&mut d, 36, |s| frame(0.070, 0.100, s));
+        assert!(!d.starved(), "not yet at the floor long enough: {}", d.scale());
+        run(&mut d, 200, |s| frame(0.070, 0.100, s));
+        assert_eq!(d.scale(), DynamicResolution::MIN_SCALE);
+        assert!(d.starved());
+        // The caller lightened the frame: no longer starved once a window of lighter frames is in.
+        run(&mut d, 2 * DynamicResolution::WINDOW, |s| frame(0.030, 0.100, s));
+        assert!(!d.starved());
     }
 
     #[test]

@@ -49,13 +49,18 @@ pub const CPU_RENDER_SCALE: f32 = 0.5;
 /// The frame rate a CPU device's dynamic resolution holds: some margin over 15 fps.
 pub const CPU_TARGET_FPS: f32 = 20.0;
 
+/// The rows of indirect light (`gi.min_rows`) dynamic resolution falls back to when even its
+/// lowest render scale cannot hold the frame rate: receivers of 8×8 pixels at 640×360, the CPU
+/// settings before they rose to 72 rows (a slower 2-core VM settles at the floor with these).
+pub const STARVED_GI_ROWS: u32 = 45;
+
 /// What the main menu says on a CPU device: the settings that keep it playable, and whether
 /// they are the ones in use.
 fn cpu_note(adapter: &str, config: &Config) -> String {
     let preset = plugin_gi::GiSettings::cpu_preset();
     let chosen = format!(
         "dynamic resolution holding {CPU_TARGET_FPS:.0} fps (render scale 25 to {:.0} %) and at least {} rows of \
-         indirect light (gi.min_rows)",
+         indirect light (gi.min_rows; {STARVED_GI_ROWS} where even 25 % is too slow)",
         CPU_RENDER_SCALE * 100.0,
         preset.min_rows
     );
@@ -337,6 +342,17 @@ impl GameWindow {
         }
     }
 
+    /// Dynamic resolution is at its floor and still too slow: fewer rows of indirect light,
+    /// once (they do not come back by themselves; F1 sets them).
+    fn lighten_gi(&mut self) {
+        if self.config.gi.enabled && self.config.gi.min_rows > STARVED_GI_ROWS {
+            self.config.gi.min_rows = STARVED_GI_ROWS;
+            if let Some(gi) = &self.gi {
+                gi.set_settings(self.config.gi.clone());
+            }
+        }
+    }
+
     fn apply_config(&mut self) {
         if let TickSource::Live { sampler, .. } = &mut self.source {
             sampler.sensitivity = self.config.radians_per_pixel();
@@ -580,10 +596,15 @@ impl WindowApp for GameWindow {
     fn update(&mut self, input: &Input, dt: f32) {
         self.input = input.clone();
         self.frame_rate.push(dt);
-        if let (Some(d), Some(r)) = (&mut self.resolution, &mut self.renderer) {
-            if let Some(scale) = d.push(dt) {
+        let mut starved = false;
+        if let Some(d) = &mut self.resolution {
+            if let (Some(scale), Some(r)) = (d.push(dt), &mut self.renderer) {
                 r.set_render_scale(scale);
             }
+            starved = d.starved();
+        }
+        if starved {
+            self.lighten_gi();
         }
         self.time += dt;
         if input.pressed(KeyCode::F3) {

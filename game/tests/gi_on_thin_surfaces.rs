@@ -1,8 +1,8 @@
 //! The GI on a surface narrower than a receiver's cell, as a pan slides it across the cells: the
-//! Cellar's doorway at the CPU settings (a receiver for 8×8 pixels), whose jamb is a strip a
-//! few pixels wide. Its pixels are lit as the world-fixed reference says in every frame. (A
-//! receiver used to be evaluated on its cell's centre only, so the jamb had one in the frames
-//! where a centre fell on it and took the wall's light in the others.)
+//! Cellar's doorway at 45 rows (a receiver for 8×8 pixels, the CPU settings' fallback), whose
+//! jamb is a strip a few pixels wide. Its pixels are lit as the world-fixed reference says in
+//! every frame. (A receiver used to be evaluated on its cell's centre only, so the jamb had one
+//! in the frames where a centre fell on it and took the wall's light in the others.)
 
 mod common;
 
@@ -26,7 +26,7 @@ const WALL_BACK: f32 = -0.4;
 fn a_jamb_narrower_than_a_receiver_keeps_its_light_as_the_view_slides() {
     let gpu = Gpu::headless().expect("a GPU adapter (on a machine without one: apt install mesa-vulkan-drivers)");
     let level = engine::scene::load_level(std::path::Path::new(&common::cellar())).expect("the shipped level");
-    // The CPU settings, and the gather's own answer each frame: no history to average the frames.
+    // 8×8-pixel receivers, and the gather's own answer each frame: no history to average the frames.
     let settings = plugin_gi::GiSettings { history: 0.0, min_rows: 45, ..plugin_gi::GiSettings::default() };
     let (plugins, _) = game::plugins(settings);
     let mut renderer = Renderer::new(&gpu, &level.scene, plugins).unwrap();

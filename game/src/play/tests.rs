@@ -68,6 +68,43 @@ fn frames_run_fixed_ticks_and_draw_between_them() {
     assert!(eye.distance(a) <= a.distance(b) + 1e-5 && eye.distance(b) <= a.distance(b) + 1e-5);
 }
 
+/// Where even the lowest render scale cannot hold the frame rate, dynamic resolution lowers
+/// the GI's rows once, and the GI plugin renders with them.
+#[test]
+fn a_machine_too_slow_at_the_lowest_scale_gets_fewer_rows_of_indirect_light() {
+    let plugin = plugin_gi::GiPlugin::new(GiSettings::cpu_preset());
+    let gi = plugin.handle();
+    let mut slow = app();
+    slow.gi = Some(gi.clone());
+    slow.config.dynamic_resolution = true;
+    slow.config.target_fps = CPU_TARGET_FPS;
+    slow.config.render_scale = CPU_RENDER_SCALE;
+    slow.config.gi = GiSettings::cpu_preset();
+    slow.apply_config();
+    let input = Input::default();
+    // 10 fps whatever the scale.
+    for _ in 0..(3 * engine::dynamic_resolution::DynamicResolution::WINDOW) {
+        slow.update(&input, 0.1);
+    }
+    assert_eq!(slow.config.gi.min_rows, GiSettings::cpu_preset().min_rows, "not before the scale is at its floor");
+    for _ in 0..(20 * engine::dynamic_resolution::DynamicResolution::WINDOW) {
+        slow.update(&input, 0.1);
+    }
+    let floor = engine::dynamic_resolution::DynamicResolution::MIN_SCALE;
+    assert_eq!(slow.resolution.as_ref().map(|d| d.scale()), Some(floor));
+    assert_eq!(slow.config.gi.min_rows, STARVED_GI_ROWS);
+    assert_eq!(gi.settings().min_rows, STARVED_GI_ROWS, "the plugin sees the change");
+    // A machine that holds its frame rate keeps the preset.
+    let mut fast = app();
+    fast.config.dynamic_resolution = true;
+    fast.config.gi = GiSettings::cpu_preset();
+    fast.apply_config();
+    for _ in 0..(20 * engine::dynamic_resolution::DynamicResolution::WINDOW) {
+        fast.update(&input, 0.03);
+    }
+    assert_eq!(fast.config.gi.min_rows, GiSettings::cpu_preset().min_rows);
+}
+
 /// The main menu and the pause menu stop the world; Esc pauses, Play and Resume go on.
 #[test]
 fn menus_pause_the_world() {
