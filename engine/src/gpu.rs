@@ -49,13 +49,21 @@ impl Gpu {
     pub fn headless() -> Result<Gpu, GpuError> {
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let adapter = pollster::block_on(Self::pick_adapter(&instance, None))?;
-        Self::open(instance, adapter)
+        Self::open(instance, adapter, wgpu::Features::empty())
+    }
+
+    /// [`Gpu::headless`] without `features` even where the adapter has them: for tests of what
+    /// a device that lacks them gets.
+    pub fn headless_without(features: wgpu::Features) -> Result<Gpu, GpuError> {
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = pollster::block_on(Self::pick_adapter(&instance, None))?;
+        Self::open(instance, adapter, features)
     }
 
     /// A device able to present to `surface` (created from `instance`).
     pub fn for_surface(instance: wgpu::Instance, surface: &wgpu::Surface<'_>) -> Result<Gpu, GpuError> {
         let adapter = pollster::block_on(Self::pick_adapter(&instance, Some(surface)))?;
-        Self::open(instance, adapter)
+        Self::open(instance, adapter, wgpu::Features::empty())
     }
 
     async fn pick_adapter(
@@ -84,11 +92,12 @@ impl Gpu {
             .map_err(|e| GpuError::NoAdapter(e.to_string()))
     }
 
-    fn open(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Gpu, GpuError> {
+    fn open(instance: wgpu::Instance, adapter: wgpu::Adapter, without: wgpu::Features) -> Result<Gpu, GpuError> {
         let timing = wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
-        // Blending into f32 targets lets plugins accumulate many small contributions exactly.
-        let wanted = timing | wgpu::Features::FLOAT32_BLENDABLE;
-        let features = adapter.features() & wanted;
+        // Blending into f32 targets lets plugins accumulate many small contributions exactly;
+        // subgroup operations let a compute pass's lanes share work (see `subgroup_size`).
+        let wanted = timing | wgpu::Features::FLOAT32_BLENDABLE | wgpu::Features::SUBGROUP;
+        let features = adapter.features() & (wanted - without);
         let info = adapter.get_info();
         log::info!("GPU adapter: {} ({:?}, {:?}), features {:?}", info.name, info.backend, info.device_type, features);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
@@ -141,6 +150,15 @@ impl Gpu {
 
     pub fn adapter_name(&self) -> String {
         self.adapter.get_info().name
+    }
+
+    /// The number of lanes of every subgroup of a compute shader (lavapipe: 8 on a CPU with
+    /// 256-bit vectors; NVIDIA: 32), when the device has subgroup operations and its subgroups
+    /// are all of one size; None otherwise.
+    pub fn subgroup_size(&self) -> Option<u32> {
+        let info = self.adapter.get_info();
+        let one_size = info.subgroup_min_size == info.subgroup_max_size;
+        (self.device.features().contains(wgpu::Features::SUBGROUP) && one_size).then_some(info.subgroup_min_size)
     }
 
     /// Whether render targets of 32-bit float formats can be blended into.

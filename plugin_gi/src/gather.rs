@@ -2,7 +2,8 @@
 //! an 8×8 tile sharing one cut through the pyramid. Three dispatches: the cuts, one invocation
 //! a tile, then the few tiles whose cut filled up walked again side by side (an indirect
 //! dispatch; both shaders/gi/cuts.wgsl), then the sum, one workgroup a tile
-//! (shaders/gi/gather.wgsl). The cuts buffer is a graph resource (see [`cuts_desc`]); the
+//! (shaders/gi/gather.wgsl, entered by gather_subgroup.wgsl or gather_invocation.wgsl: see
+//! [`SumLanes`]). The cuts buffer is a graph resource (see [`cuts_desc`]); the
 //! retry list is this gather's own scratch. The three calls cover every tile at once, so their
 //! number never depends on the resolution: the indirect target is kept small enough
 //! ([`fit_cuts_budget`]) that every tile's cut fits the budget.
@@ -16,7 +17,30 @@ use crate::quadtree::Quadtree;
 use crate::shader::module;
 
 pub const CUTS_SHADER: &str = include_str!("../../shaders/gi/cuts.wgsl");
-pub const GATHER_SHADER: &str = include_str!("../../shaders/gi/gather.wgsl");
+/// The sum's body, an include of its two entry points.
+pub const GATHER_BODY: &str = include_str!("../../shaders/gi/gather.wgsl");
+pub const GATHER_SUBGROUP_SHADER: &str = include_str!("../../shaders/gi/gather_subgroup.wgsl");
+pub const GATHER_INVOCATION_SHADER: &str = include_str!("../../shaders/gi/gather_invocation.wgsl");
+
+/// How the sum's invocations load their lights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SumLanes {
+    /// The lanes of a subgroup share the loading and unpacking of lights
+    /// (gather_subgroup.wgsl): where every subgroup has 4 or 8 lanes, as on a CPU device
+    /// (lavapipe), whose SIMD rows load from storage lane by lane.
+    Subgroup,
+    /// Each invocation loads its own (gather_invocation.wgsl): everywhere else.
+    Invocation,
+}
+
+impl SumLanes {
+    pub fn for_device(gpu: &engine::gpu::Gpu) -> Self {
+        match gpu.subgroup_size() {
+            Some(4 | 8) => SumLanes::Subgroup,
+            _ => SumLanes::Invocation,
+        }
+    }
+}
 
 /// What one gather reads and writes.
 pub struct GatherTargets<'a> {
@@ -143,7 +167,7 @@ impl CutsLayout {
 }
 
 impl Gather {
-    pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout) -> Self {
+    pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, lanes: SumLanes) -> Self {
         let storage = |read_only| S::Storage { read_only };
         let cuts_layout = layout(
             device,
@@ -192,7 +216,11 @@ impl Gather {
             "retry_full_tiles",
             &[Some(globals), Some(&cuts_layout)],
         );
-        let module = module(device, "gi gather", GATHER_SHADER);
+        let source = match lanes {
+            SumLanes::Subgroup => GATHER_SUBGROUP_SHADER,
+            SumLanes::Invocation => GATHER_INVOCATION_SHADER,
+        };
+        let module = module(device, "gi gather", source);
         let pipeline = compute_pipeline(device, "gi gather", &module, "main", &[Some(globals), Some(&layout)]);
         Self { cuts_layout, cuts_pipeline, retry_args_layout, retry_pipeline, layout, pipeline, retry: None }
     }

@@ -25,6 +25,7 @@ use engine::graph::Stage;
 use engine::passes::OutputView;
 use engine::plugin::{Plugin, PluginContext};
 
+pub use gather::SumLanes;
 pub use gpu_types::{names, ReflectionLight};
 pub use passes::SHADERS;
 pub use settings::{FieldInfo, GiSettings, RETIRED};
@@ -60,10 +61,11 @@ impl Plugin for GiPlugin {
         let (params, irradiance) = (gi.params, core.view_model_irradiance);
         ctx.add_pass(Stage::Indirect, passes::GiParamsPass { handle: handle.clone(), params });
         ctx.add_pass(Stage::Indirect, passes::FluxPass::new(device, globals, handle.clone(), core, gi));
-        ctx.add_pass(Stage::Indirect, passes::GatherPass::new(device, globals, handle.clone(), core, gi));
+        let lanes = gather::SumLanes::for_device(ctx.gpu);
+        ctx.add_pass(Stage::Indirect, passes::GatherPass::new(device, globals, handle.clone(), core, gi, lanes));
         let probe = passes::ViewModelIrradiancePass::new(device, globals, handle.clone(), gi, irradiance);
         ctx.add_pass(Stage::Indirect, probe);
-        ctx.add_pass(Stage::Indirect, passes::BouncePass::new(device, globals, handle.clone(), core, gi));
+        ctx.add_pass(Stage::Indirect, passes::BouncePass::new(device, globals, handle.clone(), core, gi, lanes));
         // The total of every bounce, blended over frames.
         ctx.add_pass(Stage::Indirect, passes::TemporalPass::new(device, globals, handle.clone(), core, gi))
             .after("gi_bounces");

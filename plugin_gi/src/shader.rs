@@ -6,6 +6,7 @@ use engine::wgpu;
 pub const INCLUDES: &[(&str, &str)] = &[
     ("gi_common.wgsl", include_str!("../../shaders/gi/gi_common.wgsl")),
     ("receivers.wgsl", include_str!("../../shaders/gi/receivers.wgsl")),
+    ("gather.wgsl", crate::gather::GATHER_BODY),
 ];
 
 pub fn module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {

@@ -1,5 +1,10 @@
-// GI gather pass: the irradiance of each receiver (a pixel of the indirect target) from the
-// reflection lights of its 8×8 tile's cut through the flux pyramid (built by cuts.wgsl).
+// GI gather: the irradiance of each receiver (a pixel of the indirect target) from the
+// reflection lights of its 8×8 tile's cut through the flux pyramid (built by cuts.wgsl). The
+// body of the pass, included by its two entry points: gather_subgroup.wgsl, where the lanes of
+// a subgroup share the loading and unpacking of lights, and gather_invocation.wgsl, where each
+// invocation sums alone (see plugin_gi/src/gather.rs for which a device gets). Each supplies
+// `sequence_irradiance`.
+//
 // The receivers sum each light's irradiance as a disc of its area (disc_irradiance) over the
 // cut, interleaved: the cut's lights fall into four classes (cuts.wgsl stores class c at the
 // slots whose index mod 4 is c) and each receiver of a 2×2 pattern evaluates one class itself
@@ -8,7 +13,9 @@
 // at an edge or a corner, evaluates that class itself. The cut's near list (lights next to the
 // tile's receivers, see cuts.wgsl) every receiver sums whole. Every light is counted once per
 // receiver either way; smooth surfaces cost a quarter. A receiver on the pixel next to a fold
-// is evaluated a pixel further along its surface (`evaluated_at`).
+// is evaluated a pixel further along its surface (`evaluated_at`). The workgroup's invocations
+// take the tile's receivers in runs of eight of one class (`receiver_position`), so a run
+// sums one sequence of lights.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 #include "receivers.wgsl"
@@ -73,27 +80,50 @@ fn same_surface_mask(p: vec2i, x: vec3f, n: vec3f) -> u32 {
     return mask;
 }
 
-// Irradiance at x (normal n) from every `step`-th light of the cut at `base` from `first` on
-// (step 4: one interleaved class; step 1: the whole cut).
-fn cut_irradiance(base: u32, centre: vec3f, first: u32, step: u32, lights: u32, x: vec3f, n: vec3f) -> vec3f {
+// A sequence of the cut's lights: `count` of them, the k-th stored at slot `first` + k·`step`
+// (step < 0 runs down from the end of the tile's room).
+struct Sequence {
+    first: u32,
+    step: i32,
+    count: u32,
+};
+
+// Every `step`-th light of the cut at `base` from `first` on (step 4: one interleaved class;
+// step 1: the whole cut), of `lights` class slots.
+fn class_sequence(base: u32, first: u32, step: u32, lights: u32) -> Sequence {
+    return Sequence(base + 2u + first, i32(step), (lights - min(first, lights) + step - 1u) / step);
+}
+
+// The cut's near list (stored from the end of its room, see cuts.wgsl), every light of it:
+// these lie close to some receiver of the tile, where their light changes too fast across the
+// 2×2 pattern for a neighbour's value to stand for this one's.
+fn near_sequence(base: u32, stride: u32, count: u32) -> Sequence {
+    return Sequence(near_slot(base, stride, 0u), -1, count);
+}
+
+fn sequence_light(s: Sequence, k: u32, centre: vec3f) -> CutLight {
+    return unpack_cut_light(cuts[u32(i32(s.first) + i32(k) * s.step)], centre);
+}
+
+// Irradiance at x (normal n) from a sequence's lights, summed by this invocation alone.
+fn own_sequence_irradiance(s: Sequence, centre: vec3f, x: vec3f, n: vec3f) -> vec3f {
     var e = vec3f(0.0);
-    for (var i = first; i < lights; i += step) {
-        let l = unpack_cut_light(cuts[base + 2u + i], centre);
+    for (var k = 0u; k < s.count; k++) {
+        let l = sequence_light(s, k, centre);
         e += disc_irradiance(l.flux, l.area, l.position, l.normal, x, n);
     }
     return e;
 }
 
-// Irradiance at x (normal n) from the cut's near list (stored from the end of its room, see
-// cuts.wgsl), every light of it: these lie close to some receiver of the tile, where their
-// light changes too fast across the 2×2 pattern for a neighbour's value to stand for this one's.
-fn near_irradiance(base: u32, stride: u32, centre: vec3f, count: u32, x: vec3f, n: vec3f) -> vec3f {
-    var e = vec3f(0.0);
-    for (var k = 0u; k < count; k++) {
-        let l = unpack_cut_light(cuts[near_slot(base, stride, k)], centre);
-        e += disc_irradiance(l.flux, l.area, l.position, l.normal, x, n);
-    }
-    return e;
+// The tile position of the workgroup's receiver r: eight runs of eight, each of one light
+// class (`light_class`), so that a subgroup of eight lanes or fewer sums one sequence.
+fn receiver_position(r: u32) -> vec2i {
+    let run = r / 8u;
+    let lane = r % 8u;
+    let kind = run % 4u;
+    let stepped = vec2i(i32(params.receiver_parity & 1u), i32(params.receiver_parity >> 1u));
+    let first = (vec2i(i32(kind & 1u), i32(kind >> 1u)) - stepped) & vec2i(1);
+    return first + 2 * vec2i(i32(lane & 3u), 2 * i32(run / 4u) + i32(lane >> 2u));
 }
 
 // Whether G-buffer texel t lies on the plane of the receiver at x (normal n, distance d).
@@ -127,10 +157,18 @@ fn tent(k: u32) -> f32 {
     return select(1.0, 0.5, k % 3u != 1u) * select(1.0, 0.5, k / 3u != 1u);
 }
 
-@compute @workgroup_size(8, 8)
-fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_index) li: u32,
-    @builtin(workgroup_id) group: vec3u) {
-    let q = group.xy * CUT_TILE + local.xy;
+// An invocation's lane in its subgroup and the subgroup's size, for `sequence_irradiance`
+// (0 and 1 where each invocation sums alone).
+struct Lanes {
+    lane: u32,
+    count: u32,
+};
+
+// Receiver r of the tile of workgroup `group`.
+fn gather(r: u32, lanes: Lanes, group: vec2u) {
+    let p = receiver_position(r);
+    let li = u32(p.y * 8 + p.x);
+    let q = group * CUT_TILE + vec2u(p);
     let in_view = all(q < params.indirect_size);
     var x = vec3f(0.0);
     var n = vec4f(0.0);
@@ -159,7 +197,6 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
     var e = vec3f(0.0);
     // Interleaving: this receiver's own class, and the classes it must evaluate itself too
     // (bit c) because no neighbour on its surface has them.
-    let p = vec2i(local.xy);
     let interleaved = params.interleave == 2u;
     let own_class = select(0u, light_class(p), interleaved);
     let step = select(1u, 4u, interleaved);
@@ -186,22 +223,23 @@ fn main(@builtin(local_invocation_id) local: vec3u, @builtin(local_invocation_in
         // Each receiver reads its lights from the cut itself: copying the cut through
         // workgroup memory in batches cost a CPU device more (its loads are per lane either
         // way) than the barriers saved.
-        if valid {
-            // (Where its eight neighbours lie on its surface no fold is that close; where the
-            // senders are single texels none straddles the fold.)
-            var x = x;
-            if params.flux_block > 1u && similar != EVERY_NEIGHBOUR {
-                x = evaluated_at(g, x, n.xyz);
+        // (Where its eight neighbours lie on its surface no fold is that close; where the
+        // senders are single texels none straddles the fold.)
+        var x = x;
+        if valid && params.flux_block > 1u && similar != EVERY_NEIGHBOUR {
+            x = evaluated_at(g, x, n.xyz);
+        }
+        // Its class, and the near list, all of it, kept to this receiver: every invocation
+        // sums them (those without a receiver too), as the lanes of a run share the work.
+        own = sequence_irradiance(class_sequence(base, own_class, step, lights), centre, x, n.xyz, lanes);
+        e = sequence_irradiance(near_sequence(base, stride, counts.y), centre, x, n.xyz, lanes);
+        own = select(vec3f(0.0), own, valid);
+        e = select(vec3f(0.0), e, valid);
+        // The classes no neighbour on this surface has, evaluated here.
+        for (var c = 0u; c < 4u; c++) {
+            if valid && ((lacking >> c) & 1u) != 0u {
+                e += own_sequence_irradiance(class_sequence(base, c, 4u, lights), centre, x, n.xyz);
             }
-            own = cut_irradiance(base, centre, own_class, step, lights, x, n.xyz);
-            // The classes no neighbour on this surface has, evaluated here.
-            for (var c = 0u; c < 4u; c++) {
-                if ((lacking >> c) & 1u) != 0u {
-                    e += cut_irradiance(base, centre, c, 4u, lights, x, n.xyz);
-                }
-            }
-            // The near list, all of it, kept to this receiver.
-            e += near_irradiance(base, stride, centre, counts.y, x, n.xyz);
         }
         // The other classes from the neighbours on this surface, tent-weighted per class.
         partials[li] = own;

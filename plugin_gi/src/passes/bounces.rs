@@ -9,7 +9,7 @@ use engine::wgpu;
 use super::flux::flux_texture;
 use super::gather::{irradiance_texture, lights_desc, stats_desc};
 use super::params::{flux_blocks, flux_size, indirect_size, params, params_desc};
-use crate::gather::{cuts_layout, CutsLayout, Gather, GatherTargets};
+use crate::gather::{cuts_layout, CutsLayout, Gather, GatherTargets, SumLanes};
 use crate::pyramid::{nodes_desc, PyramidBindings, PyramidPipelines};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
@@ -49,8 +49,10 @@ impl BouncePass {
         handle: GiHandle,
         core: CoreResources,
         gi: GiResources,
+        lanes: SumLanes,
     ) -> Self {
-        Self { pyramid: PyramidPipelines::new(device, globals), gather: Gather::new(device, globals), handle, core, gi }
+        let gather = Gather::new(device, globals, lanes);
+        Self { pyramid: PyramidPipelines::new(device, globals), gather, handle, core, gi }
     }
 }
 

@@ -5,7 +5,7 @@ use engine::passes::CoreResources;
 use engine::wgpu;
 
 use super::params::{fixed, flux_size, indirect_size};
-use crate::gather::{cuts_desc, cuts_layout, receivers_desc, CutsLayout, Gather, GatherTargets};
+use crate::gather::{cuts_desc, cuts_layout, receivers_desc, CutsLayout, Gather, GatherTargets, SumLanes};
 use crate::gpu_types::{CENTRE_LIGHTS, GATHER_STATS_SIZE};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
@@ -82,8 +82,9 @@ impl GatherPass {
         handle: GiHandle,
         core: CoreResources,
         gi: GiResources,
+        lanes: SumLanes,
     ) -> Self {
-        Self { gather: Gather::new(device, globals), handle, core, gi, sinks: [sink(device), sink(device)] }
+        Self { gather: Gather::new(device, globals, lanes), handle, core, gi, sinks: [sink(device), sink(device)] }
     }
 }
 

@@ -25,7 +25,8 @@ pub use view_model_irradiance::ViewModelIrradiancePass;
 pub const SHADERS: &[(&str, &str)] = &[
     ("gi/pyramid.wgsl", crate::pyramid::SHADER),
     ("gi/cuts.wgsl", crate::gather::CUTS_SHADER),
-    ("gi/gather.wgsl", crate::gather::GATHER_SHADER),
+    ("gi/gather_subgroup.wgsl", crate::gather::GATHER_SUBGROUP_SHADER),
+    ("gi/gather_invocation.wgsl", crate::gather::GATHER_INVOCATION_SHADER),
     ("gi/indirect.wgsl", indirect::SHADER),
     ("gi/lights_view.wgsl", lights_view::SHADER),
     ("gi/reference.wgsl", reference::SHADER),
