@@ -17,8 +17,6 @@ use crate::quadtree::Quadtree;
 use crate::shader::module;
 
 pub const CUTS_SHADER: &str = include_str!("../../shaders/gi/cuts.wgsl");
-/// The sum's body, an include of its two entry points.
-pub const GATHER_BODY: &str = include_str!("../../shaders/gi/gather.wgsl");
 pub const GATHER_SUBGROUP_SHADER: &str = include_str!("../../shaders/gi/gather_subgroup.wgsl");
 pub const GATHER_INVOCATION_SHADER: &str = include_str!("../../shaders/gi/gather_invocation.wgsl");
 

@@ -6,7 +6,8 @@ use engine::wgpu;
 pub const INCLUDES: &[(&str, &str)] = &[
     ("gi_common.wgsl", include_str!("../../shaders/gi/gi_common.wgsl")),
     ("receivers.wgsl", include_str!("../../shaders/gi/receivers.wgsl")),
-    ("gather.wgsl", crate::gather::GATHER_BODY),
+    // The gather's body, included by its two entry points (see crate::gather).
+    ("gather.wgsl", include_str!("../../shaders/gi/gather.wgsl")),
 ];
 
 pub fn module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
