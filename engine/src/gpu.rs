@@ -47,9 +47,7 @@ pub struct Gpu {
 impl Gpu {
     /// A device with no window. `WGPU_ADAPTER_NAME` / `WGPU_BACKEND` pick a specific adapter.
     pub fn headless() -> Result<Gpu, GpuError> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let adapter = pollster::block_on(Self::pick_adapter(&instance, None))?;
-        Self::open(instance, adapter, wgpu::Features::empty())
+        Self::headless_without(wgpu::Features::empty())
     }
 
     /// [`Gpu::headless`] without `features` even where the adapter has them: for tests of what

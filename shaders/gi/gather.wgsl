@@ -158,7 +158,9 @@ fn tent(k: u32) -> f32 {
 }
 
 // An invocation's lane in its subgroup and the subgroup's size, for `sequence_irradiance`
-// (0 and 1 where each invocation sums alone).
+// (0 and 1 where each invocation sums alone). The entry point supplies
+// `sequence_irradiance(s, centre, x, n, lanes, wanted)`: the irradiance at x (normal n) from
+// sequence s's lights, for an invocation that needs it where `wanted`.
 struct Lanes {
     lane: u32,
     count: u32,
@@ -220,27 +222,28 @@ fn gather(r: u32, lanes: Lanes, group: vec2u) {
     }
     var own = vec3f(0.0);
     if lights + counts.y > 0u {
-        // Each receiver reads its lights from the cut itself: copying the cut through
-        // workgroup memory in batches cost a CPU device more (its loads are per lane either
-        // way) than the barriers saved.
+        // The lights are read from the cut itself, shared within a subgroup where the entry
+        // point can (gather_subgroup.wgsl): copying the cut through workgroup memory in
+        // batches cost a CPU device more (its loads are per lane either way) than the
+        // barriers saved.
         // (Where its eight neighbours lie on its surface no fold is that close; where the
         // senders are single texels none straddles the fold.)
         var x = x;
         if valid && params.flux_block > 1u && similar != EVERY_NEIGHBOUR {
             x = evaluated_at(g, x, n.xyz);
         }
-        // Its class, and the near list, all of it, kept to this receiver: every invocation
-        // sums them (those without a receiver too), as the lanes of a run share the work.
-        own = sequence_irradiance(class_sequence(base, own_class, step, lights), centre, x, n.xyz, lanes);
-        e = sequence_irradiance(near_sequence(base, stride, counts.y), centre, x, n.xyz, lanes);
+        // Its class, and the near list, all of it, kept to this receiver. Every invocation
+        // calls these, those without a receiver too, as the lanes of a run may share the work.
+        own = sequence_irradiance(class_sequence(base, own_class, step, lights), centre, x, n.xyz, lanes, valid);
+        let near = sequence_irradiance(near_sequence(base, stride, counts.y), centre, x, n.xyz, lanes, valid);
         own = select(vec3f(0.0), own, valid);
-        e = select(vec3f(0.0), e, valid);
         // The classes no neighbour on this surface has, evaluated here.
         for (var c = 0u; c < 4u; c++) {
             if valid && ((lacking >> c) & 1u) != 0u {
                 e += own_sequence_irradiance(class_sequence(base, c, 4u, lights), centre, x, n.xyz);
             }
         }
+        e += select(vec3f(0.0), near, valid);
         // The other classes from the neighbours on this surface, tent-weighted per class.
         partials[li] = own;
         workgroupBarrier();

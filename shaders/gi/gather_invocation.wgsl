@@ -3,8 +3,11 @@
 // anyway).
 #include "gather.wgsl"
 
-// Irradiance at x (normal n) from a sequence's lights.
-fn sequence_irradiance(s: Sequence, centre: vec3f, x: vec3f, n: vec3f, lanes: Lanes) -> vec3f {
+// Irradiance at x (normal n) from a sequence's lights; nothing is summed where not `wanted`.
+fn sequence_irradiance(s: Sequence, centre: vec3f, x: vec3f, n: vec3f, lanes: Lanes, wanted: bool) -> vec3f {
+    if !wanted {
+        return vec3f(0.0);
+    }
     return own_sequence_irradiance(s, centre, x, n);
 }
 

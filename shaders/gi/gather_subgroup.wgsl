@@ -7,9 +7,13 @@
 #include "gather.wgsl"
 
 // Irradiance at x (normal n) from a sequence's lights, shared by the subgroup's lanes; every
-// lane of the subgroup must call it with the same sequence.
-fn sequence_irradiance(s: Sequence, centre: vec3f, x: vec3f, n: vec3f, lanes: Lanes) -> vec3f {
+// lane of the subgroup must call it with the same sequence. Nothing is summed where no lane
+// of the subgroup is `wanted` (a row of the tile on the void).
+fn sequence_irradiance(s: Sequence, centre: vec3f, x: vec3f, n: vec3f, lanes: Lanes, wanted: bool) -> vec3f {
     var e = vec3f(0.0);
+    if !subgroupAny(wanted) {
+        return e;
+    }
     for (var k0 = 0u; k0 < s.count; k0 += lanes.count) {
         let k = k0 + lanes.lane;
         var l = sequence_light(s, min(k, s.count - 1u), centre);
