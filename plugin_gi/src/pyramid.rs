@@ -45,6 +45,16 @@ pub struct PyramidBindings<'a> {
     pub flux_view: &'a wgpu::TextureView,
 }
 
+/// Where the base's flux comes from: each has its own entry point, so a pipeline compiles only
+/// its own way (a CPU device runs both sides of a branch on a uniform value).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FluxSource {
+    /// The headlamp's light on the lamp view (the first bounce).
+    Lamp,
+    /// The previous bounce's irradiance (bounces after the first).
+    Bounce,
+}
+
 pub struct PyramidPipelines {
     layout: wgpu::BindGroupLayout,
     flux: wgpu::ComputePipeline,
@@ -52,7 +62,7 @@ pub struct PyramidPipelines {
 }
 
 impl PyramidPipelines {
-    pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout) -> Self {
+    pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, source: FluxSource) -> Self {
         let layout = layout(
             device,
             "gi pyramid",
@@ -71,7 +81,10 @@ impl PyramidPipelines {
         let module = module(device, "gi pyramid", SHADER);
         let layouts = [Some(globals), Some(&layout)];
         Self {
-            flux: compute_pipeline(device, "gi flux", &module, "flux", &layouts),
+            flux: match source {
+                FluxSource::Lamp => compute_pipeline(device, "gi flux", &module, "flux_from_lamp", &layouts),
+                FluxSource::Bounce => compute_pipeline(device, "gi bounce flux", &module, "flux_from_bounce", &layouts),
+            },
             reduce: compute_pipeline(device, "gi reduce", &module, "reduce", &layouts),
             layout,
         }

@@ -236,9 +236,9 @@ struct Halves {
     second: Node,
 };
 
-fn fold_halves(node: Node, level: u32, place: vec2u) -> Halves {
+fn fold_halves(node: Node, level: u32, place: vec2u, near: bool) -> Halves {
     var h = Halves(node, Node());
-    if level == 0u && node.merged == 0u && params.flux_block > 1u {
+    if near && level == 0u && node.merged == 0u && params.flux_block > 1u {
         let at = table.levels[PYRAMID_LEVELS];
         let i = at.x + place.y * at.y + place.x;
         h = Halves(nodes[i], nodes[i + at.y * at.z]);
@@ -310,7 +310,6 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) ->
             if action == SPLIT {
                 if planned + 3u > CUT_MAX {
                     w.filled = 1u;
-                    w.share = walked_share(level, place);
                     break;
                 }
                 planned += 3u;
@@ -324,23 +323,29 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) ->
                     w.away++;
                 } else {
                     let classes = 4u * max(max(w.classes.x, w.classes.y), max(w.classes.z, w.classes.w));
-                    let halves = fold_halves(node, level, place);
+                    // One place packs and stores the light whichever list takes it: a CPU
+                    // device runs every branch of the loop's body for its whole SIMD row.
+                    var light = node;
+                    var slot: u32;
+                    let halves = fold_halves(node, level, place, action == TAKE_NEAR);
                     if action == TAKE_NEAR && halves.second.area > 0.0 && classes + w.near + 2u <= room {
                         // A base block across a fold: its two sides, each on its own plane.
-                        cuts[near_slot(base, stride, w.near)] = pack_cut_light(halves.first, b.sphere.xyz);
                         cuts[near_slot(base, stride, w.near + 1u)] = pack_cut_light(halves.second, b.sphere.xyz);
+                        light = halves.first;
+                        slot = near_slot(base, stride, w.near);
                         w.near += 2u;
                     } else if action == TAKE_NEAR && classes + w.near + 1u <= room {
-                        cuts[near_slot(base, stride, w.near)] = pack_cut_light(node, b.sphere.xyz);
+                        slot = near_slot(base, stride, w.near);
                         w.near++;
                     } else {
                         var kind = (place.x & 1u) + 2u * (place.y & 1u);
                         if w.classes[kind] >= (room - w.near) / 4u {
                             kind = fewest(w.classes);
                         }
-                        cuts[class_slot(base, kind, w.classes[kind])] = pack_cut_light(node, b.sphere.xyz);
+                        slot = class_slot(base, kind, w.classes[kind]);
                         w.classes[kind] += 1u;
                     }
+                    cuts[slot] = pack_cut_light(light, b.sphere.xyz);
                     w.taken++;
                 }
             } else {
@@ -374,6 +379,9 @@ fn walk(b: TileBounds, floor: u32, split_ratio: f32, base: u32, centre: bool) ->
         } else {
             place = vec2u(place.x - 1u, place.y + 1u);
         }
+    }
+    if w.filled == 1u {
+        w.share = walked_share(level, place);
     }
     return w;
 }

@@ -1,7 +1,7 @@
 // GI flux pyramid: turns the lamp-view G-buffer into reflected flux per texel and reduces it
 // into a quadtree of reflection lights with the article's merge filter, in two dispatches:
-// `flux` writes levels 0–3 (each workgroup reduces its 8×8 texels in workgroup memory) and
-// `reduce` levels 4–6 from level 3 the same way.
+// `flux_from_lamp` (or `flux_from_bounce`) writes levels 0–3 (each workgroup reduces its 8×8
+// texels in workgroup memory) and `reduce` levels 4–6 from level 3 the same way.
 //
 // The base (level 0) is the lamp view reduced to params.flux_size: each base texel merges its
 // block of lamp-view texels as the levels above merge theirs. Attached, the base is as fine as
@@ -21,11 +21,18 @@
 @group(1) @binding(5) var<storage, read_write> nodes: array<Node>;
 @group(1) @binding(6) var flux_out: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(7) var flux_view_out: texture_storage_2d<rgba16float, write>;
-// The previous bounce's irradiance (only read when params.source == 1).
+// The previous bounce's irradiance (only read by `flux_from_bounce`).
 @group(1) @binding(8) var previous_irradiance: texture_2d<f32>;
 
 var<workgroup> wide: array<Node, 64>;
 var<workgroup> narrow: array<Node, 16>;
+
+// Where a flux texel's flux comes from: lamp (0) or the previous bounce (1), a constant of each
+// entry point rather than params.source, so each pipeline compiles only its own way (a CPU
+// device runs both sides of a branch, on a uniform value too: the bounce's side cost the
+// first bounce's pyramid an eighth of its time).
+const FROM_LAMP: u32 = 0u;
+const FROM_BOUNCE: u32 = 1u;
 
 fn store_node(level: u32, t: vec2u, node: Node) {
     let l = table.levels[level];
@@ -65,7 +72,7 @@ fn reduce_three_levels(local: vec2u, group: vec2u, base: u32) {
 
 // One texel of the lamp view (at `t`, of a view of `view` texels) as a light: zero flux where
 // nothing is seen or nothing is lit.
-fn view_texel_node(t: vec2u, view: vec2u) -> Node {
+fn view_texel_node(t: vec2u, view: vec2u, source: u32) -> Node {
     var node: Node;
     node.merged = 1u;
     if any(t >= view) {
@@ -79,7 +86,7 @@ fn view_texel_node(t: vec2u, view: vec2u) -> Node {
     let x = textureLoad(gbuffer_position, vec2i(t), 0).xyz;
     let rho = textureLoad(gbuffer_albedo, vec2i(t), 0).rgb;
     let area = texel_area(omega, x, normal.xyz, globals.lamp_pos.xyz);
-    if params.source == 0u {
+    if source == FROM_LAMP {
         node.flux = lamp_reflected_flux(rho, x, omega);
     } else {
         // The irradiance sample nearest the texel's (receiver_texel's inverse).
@@ -146,7 +153,7 @@ fn half_index(id: vec2u, second: bool) -> u32 {
 // the rest. Where the block spans a fold the cut's near list takes those two lights, each on
 // its own plane, instead of the one light tilted between the planes, which a receiver next to
 // the fold sees from behind.
-fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
+fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u, source: u32) -> Node {
     var first = Sums();
     var second = Sums();
     var facing = vec3f(0.0);
@@ -158,7 +165,7 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     let step = max(k / 4u, 1u);
     let n = k / step;
     for (var j = 0u; j < n * n; j++) {
-        var texel = view_texel_node(t + vec2u(j % n, j / n) * step, view);
+        var texel = view_texel_node(t + vec2u(j % n, j / n) * step, view, source);
         let share = f32(step * step);
         texel.flux *= share;
         texel.area *= share;
@@ -202,7 +209,7 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
 // Texel `id` of the flux G-buffer: the block of lamp-view texels it stands for, every one of
 // them a sender merged into it (not the one at its centre alone, which jumped from surface to
 // surface as the view moved and made the senders shimmer).
-fn texel_node(id: vec2u) -> Node {
+fn texel_node(id: vec2u, source: u32) -> Node {
     let view = textureDimensions(gbuffer_normal);
     // The block's side: the power of two the view was halved by. Blocks begin
     // `sender_offset` texels before the view's corner, and their grid moves with the picture
@@ -214,11 +221,11 @@ fn texel_node(id: vec2u) -> Node {
     // Where the flux view (one texel a block over the view, no padding) shows it.
     var shown = vec2i(id);
     if k == 1u {
-        node = view_texel_node(id, view);
+        node = view_texel_node(id, view, source);
         omega = texel_solid_angle(id, params.flux_size, params.lamp_tan);
     } else {
         let first = vec2u(vec2i(id * k) - vec2i(params.sender_offset));
-        node = block_node(first, k, view, id);
+        node = block_node(first, k, view, id, source);
         omega = texel_solid_angle(min(first + k / 2u, view - 1u), view, params.lamp_tan) * f32(k * k);
         shown -= vec2i(round(params.sender_offset / f32(k)));
     }
@@ -229,16 +236,27 @@ fn texel_node(id: vec2u) -> Node {
     return node;
 }
 
-@compute @workgroup_size(8, 8)
-fn flux(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
-    @builtin(workgroup_id) group: vec3u) {
+// Levels 0–3 from the flux G-buffer's texels.
+fn flux(id: vec2u, local: vec2u, group: vec2u, source: u32) {
     var node: Node;
-    if all(id.xy < params.flux_size) {
-        node = texel_node(id.xy);
-        store_node(0u, id.xy, node);
+    if all(id < params.flux_size) {
+        node = texel_node(id, source);
+        store_node(0u, id, node);
     }
     wide[local.y * 8u + local.x] = node;
-    reduce_three_levels(local.xy, group.xy, 0u);
+    reduce_three_levels(local, group, 0u);
+}
+
+@compute @workgroup_size(8, 8)
+fn flux_from_lamp(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
+    @builtin(workgroup_id) group: vec3u) {
+    flux(id.xy, local.xy, group.xy, FROM_LAMP);
+}
+
+@compute @workgroup_size(8, 8)
+fn flux_from_bounce(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
+    @builtin(workgroup_id) group: vec3u) {
+    flux(id.xy, local.xy, group.xy, FROM_BOUNCE);
 }
 
 @compute @workgroup_size(8, 8)

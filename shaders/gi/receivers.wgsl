@@ -48,21 +48,29 @@ fn at_a_neighbour(s: SurfacePoint, q: vec2i, view: vec2u, indirect: vec2u) -> bo
 }
 
 // The G-buffer texel receiver q is evaluated on (see above): the cell's centre, or the first
-// of the centres of its four quarters that shows a surface no neighbouring centre shows.
+// of the centres of its four quarters that shows a surface no neighbouring centre shows. One
+// loop takes the centre and then the quarters: a CPU device runs a loop's first turn and every
+// branch for its whole SIMD row, so a separate test of the centre cost the quarters' loop once
+// more for rows whose centres all pass.
 fn receiver_at(q: vec2u, view: vec2u, indirect: vec2u) -> vec2i {
     let c = receiver_texel(q, view, indirect, params.receiver_offset);
-    let centre = surface_point(c);
     let qi = vec2i(q);
-    if centre.valid && !at_a_neighbour(centre, qi, view, indirect) {
-        return c;
-    }
     let cell = vec2f(view) / vec2f(indirect);
-    for (var k = 0; k < 4; k++) {
-        // (In a cell one texel wide each way this is its centre again, and is passed over.)
-        let corner = vec2f(q) + params.receiver_offset;
-        let t = min(vec2i((corner + vec2f(0.25 + 0.5 * f32(k & 1), 0.25 + 0.5 * f32(k >> 1u))) * cell), vec2i(view) - 1);
+    var centre: SurfacePoint;
+    // k = −1: the centre; 0–3: its quarters'.
+    for (var k = -1; k < 4; k++) {
+        var t = c;
+        if k >= 0 {
+            // (In a cell one texel wide each way this is its centre again, and is passed over.)
+            let corner = vec2f(q) + params.receiver_offset;
+            t = min(vec2i((corner + vec2f(0.25 + 0.5 * f32(k & 1), 0.25 + 0.5 * f32(k >> 1u))) * cell), vec2i(view) - 1);
+        }
         let s = surface_point(t);
-        if s.valid && !(centre.valid && same_plane(centre, s)) && !at_a_neighbour(s, qi, view, indirect) {
+        if k < 0 {
+            centre = s;
+        }
+        let seen_at_centre = k >= 0 && centre.valid && same_plane(centre, s);
+        if s.valid && !seen_at_centre && !at_a_neighbour(s, qi, view, indirect) {
             return t;
         }
     }

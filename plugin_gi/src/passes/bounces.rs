@@ -10,7 +10,7 @@ use super::flux::flux_texture;
 use super::gather::{irradiance_texture, lights_desc, stats_desc};
 use super::params::{flux_blocks, flux_size, indirect_size, params, params_desc};
 use crate::gather::{cuts_layout, CutsLayout, Gather, GatherTargets, SumLanes};
-use crate::pyramid::{nodes_desc, PyramidBindings, PyramidPipelines};
+use crate::pyramid::{nodes_desc, FluxSource, PyramidBindings, PyramidPipelines};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
 
@@ -52,7 +52,7 @@ impl BouncePass {
         lanes: SumLanes,
     ) -> Self {
         let gather = Gather::new(device, globals, lanes);
-        Self { pyramid: PyramidPipelines::new(device, globals), gather, handle, core, gi }
+        Self { pyramid: PyramidPipelines::new(device, globals, FluxSource::Bounce), gather, handle, core, gi }
     }
 }
 

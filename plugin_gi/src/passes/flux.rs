@@ -6,7 +6,7 @@ use engine::wgpu;
 
 use super::params::{fixed, flux_blocks, flux_size, flux_view_size, lamp_view};
 use crate::gpu_types::Levels;
-use crate::pyramid::{levels_desc, nodes_desc, PyramidBindings, PyramidPipelines};
+use crate::pyramid::{levels_desc, nodes_desc, FluxSource, PyramidBindings, PyramidPipelines};
 use crate::quadtree::Quadtree;
 use crate::resources::GiResources;
 
@@ -38,7 +38,7 @@ impl FluxPass {
         core: CoreResources,
         gi: GiResources,
     ) -> Self {
-        Self { core, gi, pyramid: PyramidPipelines::new(device, globals), settings }
+        Self { core, gi, pyramid: PyramidPipelines::new(device, globals, FluxSource::Lamp), settings }
     }
 }
 
