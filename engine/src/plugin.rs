@@ -38,6 +38,12 @@ impl PluginContext<'_> {
         self.graph.add_pass(stage, pass)
     }
 
+    /// Puts `pass` in the place of the engine's pass named `name` (see
+    /// [`RenderGraph::replace_pass`]).
+    pub fn replace_pass<P: RenderPass>(&mut self, name: &str, pass: P) -> PassOrder<'_> {
+        self.graph.replace_pass(name, pass)
+    }
+
     /// A texture that lives within a frame.
     pub fn image(&mut self, label: &str) -> Handle<Image> {
         self.graph.image(label)

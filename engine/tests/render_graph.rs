@@ -115,6 +115,34 @@ fn two_writers_nothing_orders_are_an_error_naming_both_until_one_is_declared_aft
 }
 
 #[test]
+fn a_replaced_pass_is_gone_and_its_replacement_takes_its_stage_and_orders() {
+    let mut g = RenderGraph::new();
+    let (output, hdr, gbuffer, gi) = (g.import_image("output"), g.image("hdr"), g.image("gbuffer"), g.image("gi"));
+    g.add_pass(Stage::GBuffer, pass("gbuffer").creates(gbuffer));
+    g.add_pass(Stage::Composite, pass("composite").reads(gbuffer).creates(hdr));
+    g.add_pass(Stage::Composite, pass("fog").writes(hdr)).after("composite");
+    g.add_pass(Stage::Present, pass("present").reads(hdr).writes(output));
+    // Registered before its input's maker, in an earlier stage than the pass it replaces: it
+    // runs where `composite` did, after what it reads, before `fog`, which named `composite`.
+    g.add_pass(Stage::Indirect, pass("gi").reads(gbuffer).creates(gi));
+    g.replace_pass("composite", pass("gi_composite").reads(gi).reads(gbuffer).creates(hdr));
+    assert_eq!(order(&mut g).unwrap(), ["gbuffer", "gi", "gi_composite", "fog", "present"]);
+    assert!(!g.pass_names().contains(&"composite".to_string()));
+}
+
+#[test]
+fn replacing_a_pass_the_graph_does_not_have_is_an_error() {
+    let mut g = RenderGraph::new();
+    let (output, hdr) = (g.import_image("output"), g.image("hdr"));
+    g.add_pass(Stage::Composite, pass("composite").creates(hdr));
+    g.add_pass(Stage::Present, pass("present").reads(hdr).writes(output));
+    g.replace_pass("compositor", pass("gi_composite").creates(hdr));
+    let err = order(&mut g).unwrap_err();
+    assert_eq!(err, GraphError::UnknownPass("compositor".into()));
+    assert!(err.to_string().contains("'compositor'"), "{err}");
+}
+
+#[test]
 fn an_explicit_order_naming_no_pass_is_an_error() {
     let mut g = RenderGraph::new();
     let output = g.import_image("output");

@@ -70,7 +70,8 @@ impl Plugin for GiPlugin {
         ctx.add_pass(Stage::Indirect, passes::TemporalPass::new(device, globals, handle.clone(), core, gi))
             .after("gi_bounces");
         ctx.add_pass(Stage::Indirect, passes::ReferencePass::new(device, globals, handle, core, gi));
-        ctx.add_pass(Stage::Composite, passes::IndirectCompositePass::new(device, globals, shared.clone()));
+        let composite = passes::IndirectCompositePass::new(ctx.gpu, ctx.layouts, shared.clone());
+        ctx.replace_pass("composite", composite);
         ctx.add_pass(Stage::Composite, passes::IndirectViewPass::new(device, globals, shared));
         // It draws over the finished frame, view models included, so it comes with the present.
         ctx.add_pass(Stage::Present, passes::LightsViewPass::new(device, globals, gi, core.hdr));

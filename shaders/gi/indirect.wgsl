@@ -1,8 +1,9 @@
 // GI composite: the indirect radiance of each full-resolution pixel from the irradiance
 // target: geometry-aware upsampling of E (depth and normal weights against the four nearest
-// samples), then L_i = ρ/π · E. Two passes draw it: `gi_composite` adds it to the frame's HDR
-// radiance (additive blending) and `gi_indirect_view` writes it alone for the `indirect` view,
-// only when something shows that. The target's alpha holds each sample's depth and normal
+// samples), then L_i = ρ/π · E. Two passes draw it: `gi_composite` (fs_frame) makes the frame's
+// HDR radiance, direct + emissive + L_i, in place of the engine's composite, and
+// `gi_indirect_view` (fs_indirect) writes L_i alone for the `indirect` view, only when
+// something shows that. The target's alpha holds each sample's depth and normal
 // (`pack_receiver`), so nothing else is looked up for it.
 #include "common.wgsl"
 #include "gi_common.wgsl"
@@ -12,16 +13,23 @@
 @group(1) @binding(2) var gbuffer_albedo: texture_2d<f32>;
 @group(1) @binding(3) var gbuffer_normal: texture_2d<f32>;
 @group(1) @binding(4) var gbuffer_position: texture_2d<f32>;
+// fs_frame only: the engine composite's inputs.
+@group(1) @binding(5) var direct_radiance: texture_2d<f32>;
+@group(1) @binding(6) var gbuffer_emissive: texture_2d<f32>;
 
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenOut {
     return fullscreen_vertex(index);
 }
 
-// Sample s's irradiance (rgb) and how much it shares the surface of a pixel with normal n at
+// Sample s of the irradiance target (of `low` samples), clamped to its edge.
+fn sample_at(s: vec2i, low: vec2i) -> vec4f {
+    return textureLoad(irradiance, clamp(s, vec2i(0), low - 1), 0);
+}
+
+// A sample's irradiance (rgb) and how much it shares the surface of a pixel with normal n at
 // view depth `depth` (w: normal and depth weights, 0 where it has no surface).
-fn on_surface(s: vec2i, low: vec2i, n: vec3f, depth: f32) -> vec4f {
-    let sample = textureLoad(irradiance, clamp(s, vec2i(0), low - 1), 0);
+fn on_surface(sample: vec4f, n: vec3f, depth: f32) -> vec4f {
     let depth_err = abs(receiver_depth(sample.w) - depth) / max(depth, 1e-3);
     let facing = max(0.0, dot(receiver_normal(sample.w), n));
     let facing2 = facing * facing;
@@ -45,10 +53,14 @@ fn indirect_radiance(p: vec2i) -> vec4f {
     let f = clamp(place.f, vec2f(0.0), vec2f(1.0));
     var sum = vec3f(0.0);
     var total = 0.0;
+    // (Kept for the last resort below, which a CPU device runs for every pixel of a SIMD row
+    // that has one needing it: loading them again cost a tenth of the pass.)
+    var four: array<vec4f, 4>;
     for (var i = 0; i < 4; i++) {
         let o = vec2i(i & 1, i >> 1u);
         let bilinear = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
-        let s = on_surface(base + o, low, normal.xyz, depth);
+        four[i] = sample_at(base + o, low);
+        let s = on_surface(four[i], normal.xyz, depth);
         sum += s.rgb * bilinear * s.w;
         total += bilinear * s.w;
     }
@@ -63,7 +75,7 @@ fn indirect_radiance(p: vec2i) -> vec4f {
                 continue;
             }
             let t = max(vec2f(0.0), 1.0 - abs(vec2f(o) - f) * 0.5);
-            let s = on_surface(base + o, low, normal.xyz, depth);
+            let s = on_surface(sample_at(base + o, low), normal.xyz, depth);
             sum += s.rgb * t.x * t.y * s.w;
             total += t.x * t.y * s.w;
         }
@@ -73,7 +85,7 @@ fn indirect_radiance(p: vec2i) -> vec4f {
         // Nothing near on this surface: the most similar of the four.
         var nearest_err = 1e30;
         for (var i = 0; i < 4; i++) {
-            let sample = textureLoad(irradiance, clamp(base + vec2i(i & 1, i >> 1u), vec2i(0), low - 1), 0);
+            let sample = four[i];
             if bitcast<u32>(sample.w) != 0u {
                 let err = abs(receiver_depth(sample.w) - depth) / max(depth, 1e-3) + (1.0 - dot(receiver_normal(sample.w), normal.xyz));
                 if err < nearest_err {
@@ -88,6 +100,13 @@ fn indirect_radiance(p: vec2i) -> vec4f {
 }
 
 @fragment
-fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
+fn fs_frame(in: FullscreenOut) -> @location(0) vec4f {
+    let p = vec2i(in.position.xy);
+    let frame = textureLoad(direct_radiance, p, 0).rgb + textureLoad(gbuffer_emissive, p, 0).rgb;
+    return vec4f(frame + indirect_radiance(p).rgb, 1.0);
+}
+
+@fragment
+fn fs_indirect(in: FullscreenOut) -> @location(0) vec4f {
     return indirect_radiance(vec2i(in.position.xy));
 }

@@ -44,7 +44,7 @@ pub enum GraphError {
     DuplicatePass(String),
     /// Two resources have one label.
     DuplicateLabel(String),
-    /// An explicit order names a pass the graph does not have.
+    /// An explicit order, or a replacement, names a pass the graph does not have.
     UnknownPass(String),
     /// The declarations, stages and explicit orders put these passes in a circle.
     Cycle {
@@ -78,7 +78,9 @@ impl fmt::Display for GraphError {
             ),
             GraphError::DuplicatePass(name) => write!(f, "render graph: two passes are named '{name}'"),
             GraphError::DuplicateLabel(label) => write!(f, "render graph: two resources are labelled '{label}'"),
-            GraphError::UnknownPass(name) => write!(f, "render graph: an explicit order names '{name}', no pass"),
+            GraphError::UnknownPass(name) => {
+                write!(f, "render graph: an explicit order or a replacement names '{name}', no pass")
+            }
             GraphError::Cycle { passes } => {
                 write!(f, "render graph: dependency cycle between passes {}", passes.join(" -> "))
             }

@@ -55,6 +55,8 @@ pub struct RenderGraph {
     passes: Vec<Registered>,
     /// Explicit orders, (before, after) by pass name.
     explicit: Vec<(String, String)>,
+    /// Passes asked to be replaced that the graph did not have (an error at compile).
+    unknown_replaced: Vec<String>,
     compiled: Option<CompiledGraph>,
     /// The declarations `compiled` was built from.
     declared: Vec<Vec<Use>>,
@@ -144,6 +146,29 @@ impl RenderGraph {
         PassOrder { name, edges: &mut self.explicit }
     }
 
+    /// Puts `pass` in the place of the pass named `name`: in its stage, and in the explicit
+    /// orders that name it. For a plugin that does a pass's work together with its own in one
+    /// pass (the GI makes the frame's radiance, direct + emissive + indirect, in one draw in
+    /// place of `composite`). A name no pass has is an error when the graph is compiled.
+    pub fn replace_pass<P: RenderPass>(&mut self, name: &str, pass: P) -> PassOrder<'_> {
+        let new_name = pass.name().to_owned();
+        match self.passes.iter_mut().find(|p| p.node.name() == name) {
+            Some(old) => {
+                old.node = Box::new(Declared { pass, io: None });
+                for (before, after) in &mut self.explicit {
+                    for end in [before, after] {
+                        if end == name {
+                            end.clone_from(&new_name);
+                        }
+                    }
+                }
+            }
+            None => self.unknown_replaced.push(name.to_owned()),
+        }
+        self.compiled = None;
+        PassOrder { name: new_name, edges: &mut self.explicit }
+    }
+
     /// Forgets every history and persistent resource: the next frame starts from zeros, as
     /// after a cut (a level loaded, a restart, a teleport, the lamp set down or picked up).
     pub fn reset_history(&mut self) {
@@ -158,6 +183,9 @@ impl RenderGraph {
     /// checks the graph; errors name the passes and resources at fault. Re-schedules only when
     /// some declaration changed since the last call.
     pub fn compile(&mut self, size: (u32, u32), view: &ViewState) -> Result<&CompiledGraph, GraphError> {
+        if let Some(name) = self.unknown_replaced.first() {
+            return Err(GraphError::UnknownPass(name.clone()));
+        }
         let decls: Vec<Vec<Use>> = self
             .passes
             .iter_mut()

@@ -1,10 +1,14 @@
 //! Geometry-aware upsampling of the irradiance, L_i = ρ/π · E (shaders/gi/indirect.wgsl), drawn
-//! by two passes: `gi_composite` adds it to the frame's HDR radiance, `gi_indirect_view` writes
-//! it alone as the `indirect` view (culled unless something shows or reads that). With the GI
-//! off neither reads anything upstream: the composite records nothing and the view is cleared.
+//! by two passes: `gi_composite`, in place of the engine's `composite`, makes the frame's HDR
+//! radiance, direct + emissive + indirect, in one draw; `gi_indirect_view` writes the indirect
+//! radiance alone as the `indirect` view (culled unless something shows or reads that). With
+//! the GI off neither reads anything of the GI: the composite draws the engine's composite and
+//! the view is cleared.
 
+use engine::globals::CoreLayouts;
+use engine::gpu::Gpu;
 use engine::graph::{Buffer, Handle, Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
-use engine::passes::{color_pass, procedural_pipeline, CoreResources, HDR_FORMAT};
+use engine::passes::{color_pass, procedural_pipeline, CompositePass, CoreResources, HDR_FORMAT};
 use engine::wgpu;
 
 use crate::bindings::{bind, layout, Resource as R, Slot as S};
@@ -13,34 +17,30 @@ use crate::shared::GiHandle;
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/indirect.wgsl");
 
-/// Adds the indirect radiance to the frame.
-const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
-    color: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::One,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-    alpha: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::One,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-};
+/// What an upsampling draw writes: the frame's radiance with the indirect light in it, or the
+/// indirect light alone.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Output {
+    Frame,
+    IndirectOnly,
+}
 
 /// The upsampling draw, into one target.
 struct Upsample {
     handle: GiHandle,
     core: CoreResources,
     gi: GiResources,
+    output: Output,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::RenderPipeline,
 }
 
 /// What the upsampling reads: the params, the irradiance, the G-buffer's albedo, normal and
-/// position.
+/// position, and for the frame its direct and emissive radiance.
 pub struct UpsampleInputs {
     params: Read<Buffer>,
     textures: [Read<Image>; 4],
+    frame: Option<[Read<Image>; 2]>,
 }
 
 impl Upsample {
@@ -49,21 +49,28 @@ impl Upsample {
         globals: &wgpu::BindGroupLayout,
         (handle, core, gi): (GiHandle, CoreResources, GiResources),
         label: &str,
-        blend: Option<wgpu::BlendState>,
+        output: Output,
     ) -> Self {
-        let layout = layout(device, label, &[S::Uniform, S::Texture, S::Texture, S::Texture, S::Texture]);
+        let (slots, fragment): (&[S], _) = match output {
+            Output::Frame => {
+                (&[S::Uniform, S::Texture, S::Texture, S::Texture, S::Texture, S::Texture, S::Texture], "fs_frame")
+            }
+            Output::IndirectOnly => (&[S::Uniform, S::Texture, S::Texture, S::Texture, S::Texture], "fs_indirect"),
+        };
+        let layout = layout(device, label, slots);
         let module = crate::shader::module(device, label, SHADER);
-        let targets = [Some(wgpu::ColorTargetState { format: HDR_FORMAT, blend, write_mask: wgpu::ColorWrites::ALL })];
+        let targets =
+            [Some(wgpu::ColorTargetState { format: HDR_FORMAT, blend: None, write_mask: wgpu::ColorWrites::ALL })];
         let pipeline = procedural_pipeline(
             device,
             label,
             &module,
-            ("vs_main", "fs_main"),
+            ("vs_main", fragment),
             &[Some(globals), Some(&layout)],
             &targets,
             Default::default(),
         );
-        Self { handle, core, gi, layout, pipeline }
+        Self { handle, core, gi, output, layout, pipeline }
     }
 
     /// The inputs, or None with the GI off.
@@ -75,43 +82,22 @@ impl Upsample {
         Some(UpsampleInputs {
             params: d.read(self.gi.params),
             textures: [self.gi.history.current(), g.albedo, g.normal, g.position].map(|h| d.read(h)),
+            frame: (self.output == Output::Frame).then(|| [self.core.direct, self.core.emissive].map(|h| d.read(h))),
         })
     }
 
-    fn draw(
-        &self,
-        ctx: &mut PassContext<'_>,
-        label: &str,
-        inputs: &UpsampleInputs,
-        target: &Write<Image>,
-        clear: bool,
-    ) {
+    fn draw(&self, ctx: &mut PassContext<'_>, label: &str, inputs: &UpsampleInputs, target: &Write<Image>) {
         let [irradiance, albedo, normal, position] = &inputs.textures;
-        let group = bind(
-            &ctx.gpu.device,
-            &self.layout,
-            &[
-                R::Buffer(ctx.buffer(&inputs.params)),
-                R::View(ctx.view(irradiance)),
-                R::View(ctx.view(albedo)),
-                R::View(ctx.view(normal)),
-                R::View(ctx.view(position)),
-            ],
-        );
-        let load = if clear { wgpu::LoadOp::Clear(wgpu::Color::BLACK) } else { wgpu::LoadOp::Load };
-        let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(label),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: ctx.view(target),
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut resources = vec![
+            R::Buffer(ctx.buffer(&inputs.params)),
+            R::View(ctx.view(irradiance)),
+            R::View(ctx.view(albedo)),
+            R::View(ctx.view(normal)),
+            R::View(ctx.view(position)),
+        ];
+        resources.extend(inputs.frame.iter().flatten().map(|t| R::View(ctx.view(t))));
+        let group = bind(&ctx.gpu.device, &self.layout, &resources);
+        let mut pass = color_pass(ctx.encoder, label, ctx.view(target), false);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, ctx.frame.globals, &[]);
         pass.set_bind_group(1, &group, &[]);
@@ -121,21 +107,23 @@ impl Upsample {
     }
 }
 
-/// Adds the indirect radiance to the frame's `hdr`.
-pub struct IndirectCompositePass(Upsample);
+/// Makes the frame's `hdr`, direct + emissive + indirect, in place of the engine's composite
+/// (one full-screen draw instead of the composite's and another adding to it), or with the GI
+/// off draws the engine's composite.
+pub struct IndirectCompositePass {
+    upsample: Upsample,
+    gi_off: CompositePass,
+}
 
-pub struct IndirectCompositeIo {
-    inputs: Option<UpsampleInputs>,
-    hdr: Write<Image>,
+pub enum IndirectCompositeIo {
+    On { inputs: UpsampleInputs, hdr: Write<Image> },
+    Off(<CompositePass as RenderPass>::Io),
 }
 
 impl IndirectCompositePass {
-    pub(crate) fn new(
-        device: &wgpu::Device,
-        globals: &wgpu::BindGroupLayout,
-        shared: (GiHandle, CoreResources, GiResources),
-    ) -> Self {
-        Self(Upsample::new(device, globals, shared, "gi composite", Some(ADDITIVE)))
+    pub(crate) fn new(gpu: &Gpu, layouts: &CoreLayouts, shared: (GiHandle, CoreResources, GiResources)) -> Self {
+        let gi_off = CompositePass::new(gpu, layouts, &shared.1);
+        Self { upsample: Upsample::new(&gpu.device, &layouts.globals, shared, "gi composite", Output::Frame), gi_off }
     }
 }
 
@@ -147,12 +135,19 @@ impl RenderPass for IndirectCompositePass {
     }
 
     fn declare(&self, d: &mut PassDecl<'_>) -> IndirectCompositeIo {
-        IndirectCompositeIo { inputs: self.0.declare_inputs(d), hdr: d.write(self.0.core.hdr) }
+        match self.upsample.declare_inputs(d) {
+            Some(inputs) => IndirectCompositeIo::On {
+                inputs,
+                hdr: d.create(self.upsample.core.hdr, TextureDesc::target(HDR_FORMAT)),
+            },
+            None => IndirectCompositeIo::Off(self.gi_off.declare(d)),
+        }
     }
 
     fn run(&mut self, io: &IndirectCompositeIo, ctx: &mut PassContext<'_>) {
-        if let Some(inputs) = &io.inputs {
-            self.0.draw(ctx, "gi composite", inputs, &io.hdr, false);
+        match io {
+            IndirectCompositeIo::On { inputs, hdr } => self.upsample.draw(ctx, "gi composite", inputs, hdr),
+            IndirectCompositeIo::Off(io) => self.gi_off.run(io, ctx),
         }
     }
 }
@@ -175,7 +170,7 @@ impl IndirectViewPass {
         shared: (GiHandle, CoreResources, GiResources),
     ) -> Self {
         let target = shared.2.indirect;
-        Self { upsample: Upsample::new(device, globals, shared, "gi indirect view", None), target }
+        Self { upsample: Upsample::new(device, globals, shared, "gi indirect view", Output::IndirectOnly), target }
     }
 }
 
@@ -195,7 +190,7 @@ impl RenderPass for IndirectViewPass {
 
     fn run(&mut self, io: &IndirectViewIo, ctx: &mut PassContext<'_>) {
         match &io.inputs {
-            Some(inputs) => self.upsample.draw(ctx, "gi indirect view", inputs, &io.target, true),
+            Some(inputs) => self.upsample.draw(ctx, "gi indirect view", inputs, &io.target),
             None => drop(color_pass(ctx.encoder, "gi off", ctx.view(&io.target), false)),
         }
     }
