@@ -43,10 +43,13 @@ pub struct PyramidBindings<'a> {
     pub previous: &'a wgpu::TextureView,
     pub flux: &'a wgpu::TextureView,
     pub flux_view: &'a wgpu::TextureView,
+    /// Whether the base's texels are blocks of lamp-view texels (GiParams.flux_block > 1).
+    pub blocks: bool,
 }
 
-/// Where the base's flux comes from: each has its own entry point, so a pipeline compiles only
-/// its own way (a CPU device runs both sides of a branch on a uniform value).
+/// Where the base's flux comes from (GiParams.source): each source, and each kind of base
+/// (single lamp-view texels or blocks of them), has its own entry point, so a pipeline compiles
+/// only its own way (a CPU device runs both sides of a branch on a uniform value).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FluxSource {
     /// The headlamp's light on the lamp view (the first bounce).
@@ -57,7 +60,8 @@ pub enum FluxSource {
 
 pub struct PyramidPipelines {
     layout: wgpu::BindGroupLayout,
-    flux: wgpu::ComputePipeline,
+    /// Over single lamp-view texels, and over blocks of them.
+    flux: [wgpu::ComputePipeline; 2],
     reduce: wgpu::ComputePipeline,
 }
 
@@ -81,10 +85,13 @@ impl PyramidPipelines {
         let module = module(device, "gi pyramid", SHADER);
         let layouts = [Some(globals), Some(&layout)];
         Self {
-            flux: match source {
-                FluxSource::Lamp => compute_pipeline(device, "gi flux", &module, "flux_from_lamp", &layouts),
-                FluxSource::Bounce => compute_pipeline(device, "gi bounce flux", &module, "flux_from_bounce", &layouts),
-            },
+            flux: ["texels", "blocks"].map(|base| {
+                let entry = match source {
+                    FluxSource::Lamp => format!("flux_lamp_{base}"),
+                    FluxSource::Bounce => format!("flux_bounce_{base}"),
+                };
+                compute_pipeline(device, &format!("gi {entry}"), &module, &entry, &layouts)
+            }),
             reduce: compute_pipeline(device, "gi reduce", &module, "reduce", &layouts),
             layout,
         }
@@ -119,7 +126,7 @@ impl PyramidPipelines {
             .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi pyramid"), timestamp_writes: None });
         pass.set_bind_group(0, globals, &[]);
         pass.set_bind_group(1, &group, &[]);
-        pass.set_pipeline(&self.flux);
+        pass.set_pipeline(&self.flux[usize::from(b.blocks)]);
         pass.dispatch_workgroups(size.0.div_ceil(8), size.1.div_ceil(8), 1);
         // Each workgroup of the second dispatch reduces 8×8 nodes of level 3.
         let (w3, h3) = Quadtree::new(size.0, size.1).size(3);

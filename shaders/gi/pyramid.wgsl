@@ -1,7 +1,10 @@
 // GI flux pyramid: turns the lamp-view G-buffer into reflected flux per texel and reduces it
 // into a quadtree of reflection lights with the article's merge filter, in two dispatches:
-// `flux_from_lamp` (or `flux_from_bounce`) writes levels 0–3 (each workgroup reduces its 8×8
-// texels in workgroup memory) and `reduce` levels 4–6 from level 3 the same way.
+// `flux_*` writes levels 0–3 (each workgroup reduces its 8×8 texels in workgroup memory) and
+// `reduce` levels 4–6 from level 3 the same way. There is a `flux_*` entry point for each
+// source of the flux (lamp, bounce) and each kind of base (single texels, blocks), so that
+// each pipeline compiles only its own way: a CPU device runs both sides of a branch, on a
+// uniform value too (the bounce's side cost the first bounce's pyramid an eighth of its time).
 //
 // The base (level 0) is the lamp view reduced to params.flux_size: each base texel merges its
 // block of lamp-view texels as the levels above merge theirs. Attached, the base is as fine as
@@ -21,16 +24,13 @@
 @group(1) @binding(5) var<storage, read_write> nodes: array<Node>;
 @group(1) @binding(6) var flux_out: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(7) var flux_view_out: texture_storage_2d<rgba16float, write>;
-// The previous bounce's irradiance (only read by `flux_from_bounce`).
+// The previous bounce's irradiance (only read by `flux_bounce_*`).
 @group(1) @binding(8) var previous_irradiance: texture_2d<f32>;
 
 var<workgroup> wide: array<Node, 64>;
 var<workgroup> narrow: array<Node, 16>;
 
-// Where a flux texel's flux comes from: lamp (0) or the previous bounce (1), a constant of each
-// entry point rather than params.source, so each pipeline compiles only its own way (a CPU
-// device runs both sides of a branch, on a uniform value too: the bounce's side cost the
-// first bounce's pyramid an eighth of its time).
+// Where a flux texel's flux comes from (the entry point's, as params.source says).
 const FROM_LAMP: u32 = 0u;
 const FROM_BOUNCE: u32 = 1u;
 
@@ -209,7 +209,8 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u, source: u32) -> Node {
 // Texel `id` of the flux G-buffer: the block of lamp-view texels it stands for, every one of
 // them a sender merged into it (not the one at its centre alone, which jumped from surface to
 // surface as the view moved and made the senders shimmer).
-fn texel_node(id: vec2u, source: u32) -> Node {
+// (`blocks`: the entry point's, as params.flux_block > 1 says.)
+fn texel_node(id: vec2u, source: u32, blocks: bool) -> Node {
     let view = textureDimensions(gbuffer_normal);
     // The block's side: the power of two the view was halved by. Blocks begin
     // `sender_offset` texels before the view's corner, and their grid moves with the picture
@@ -220,7 +221,7 @@ fn texel_node(id: vec2u, source: u32) -> Node {
     var omega: f32;
     // Where the flux view (one texel a block over the view, no padding) shows it.
     var shown = vec2i(id);
-    if k == 1u {
+    if !blocks {
         node = view_texel_node(id, view, source);
         omega = texel_solid_angle(id, params.flux_size, params.lamp_tan);
     } else {
@@ -237,10 +238,10 @@ fn texel_node(id: vec2u, source: u32) -> Node {
 }
 
 // Levels 0–3 from the flux G-buffer's texels.
-fn flux(id: vec2u, local: vec2u, group: vec2u, source: u32) {
+fn flux(id: vec2u, local: vec2u, group: vec2u, source: u32, blocks: bool) {
     var node: Node;
     if all(id < params.flux_size) {
-        node = texel_node(id, source);
+        node = texel_node(id, source, blocks);
         store_node(0u, id, node);
     }
     wide[local.y * 8u + local.x] = node;
@@ -248,15 +249,27 @@ fn flux(id: vec2u, local: vec2u, group: vec2u, source: u32) {
 }
 
 @compute @workgroup_size(8, 8)
-fn flux_from_lamp(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
+fn flux_lamp_texels(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
     @builtin(workgroup_id) group: vec3u) {
-    flux(id.xy, local.xy, group.xy, FROM_LAMP);
+    flux(id.xy, local.xy, group.xy, FROM_LAMP, false);
 }
 
 @compute @workgroup_size(8, 8)
-fn flux_from_bounce(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
+fn flux_lamp_blocks(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
     @builtin(workgroup_id) group: vec3u) {
-    flux(id.xy, local.xy, group.xy, FROM_BOUNCE);
+    flux(id.xy, local.xy, group.xy, FROM_LAMP, true);
+}
+
+@compute @workgroup_size(8, 8)
+fn flux_bounce_texels(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
+    @builtin(workgroup_id) group: vec3u) {
+    flux(id.xy, local.xy, group.xy, FROM_BOUNCE, false);
+}
+
+@compute @workgroup_size(8, 8)
+fn flux_bounce_blocks(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
+    @builtin(workgroup_id) group: vec3u) {
+    flux(id.xy, local.xy, group.xy, FROM_BOUNCE, true);
 }
 
 @compute @workgroup_size(8, 8)

@@ -94,7 +94,8 @@ impl RenderPass for BouncePass {
     fn run(&mut self, io: &Option<BounceIo>, ctx: &mut PassContext<'_>) {
         let Some(io) = io else { return };
         let settings = self.handle.settings();
-        ctx.write_buffer(&io.params, 0, bytemuck::bytes_of(&params(&settings, ctx, 1)));
+        let values = params(&settings, ctx, 1);
+        ctx.write_buffer(&io.params, 0, bytemuck::bytes_of(&values));
         let device = &ctx.gpu.device;
         let low = io.indirect_size;
         let extent = wgpu::Extent3d { width: low.0, height: low.1, depth_or_array_layers: 1 };
@@ -115,6 +116,7 @@ impl RenderPass for BouncePass {
                 previous: ctx.view(src),
                 flux: ctx.view(&io.flux),
                 flux_view: ctx.view(&io.flux_view),
+                blocks: values.flux_block > 1,
             };
             dispatches += self.pyramid.record(device, ctx.encoder, ctx.frame.globals, io.flux_size, &bindings);
             ctx.encoder.copy_texture_to_texture(total.as_image_copy(), ctx.texture(&io.total).as_image_copy(), extent);

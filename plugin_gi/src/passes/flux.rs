@@ -94,6 +94,7 @@ impl RenderPass for FluxPass {
             previous: ctx.view(albedo),
             flux: ctx.view(&io.flux),
             flux_view: ctx.view(&io.flux_view),
+            blocks: io.blocks,
         };
         let dispatches = self.pyramid.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, io.size, &bindings);
         ctx.count_dispatches(dispatches);
