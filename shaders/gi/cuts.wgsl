@@ -97,16 +97,18 @@ fn tile_bounds(origin: vec2u, recorded: bool) -> TileBounds {
         let q = origin + vec2u(i % CUT_TILE, i / CUT_TILE);
         if all(q < params.indirect_size) {
             let slot = q.y * params.indirect_size.x + q.x;
-            var g: vec2i;
+            var s: SurfacePoint;
             if recorded {
-                g = unpack_texel(receiver_texels[slot]);
+                s = surface_point(unpack_texel(receiver_texels[slot]));
             } else {
-                g = receiver_at(q, view, params.indirect_size);
-                receiver_texels[slot] = pack_texel(g);
+                // (What it found the texel by is what the G-buffer holds there.)
+                let r = receiver_at(q, view, params.indirect_size);
+                receiver_texels[slot] = pack_texel(r.texel);
+                s = r.surface;
             }
-            let n = textureLoad(gbuffer_normal, g, 0);
-            if n.w > 0.0 {
-                let x = textureLoad(gbuffer_position, g, 0);
+            let n = s.n;
+            if s.valid {
+                let x = vec4f(s.x, s.depth);
                 points[i] = x;
                 centre += x.xyz;
                 normal += n.xyz;

@@ -15,6 +15,8 @@ struct SurfacePoint {
     x: vec3f,
     n: vec3f,
     valid: bool,
+    // View depth (the G-buffer position's w).
+    depth: f32,
 };
 
 fn surface_point(t: vec2i) -> SurfacePoint {
@@ -25,7 +27,9 @@ fn surface_point(t: vec2i) -> SurfacePoint {
     let n = textureLoad(gbuffer_normal, t, 0);
     s.valid = n.w > 0.0;
     s.n = n.xyz;
-    s.x = textureLoad(gbuffer_position, t, 0).xyz;
+    let x = textureLoad(gbuffer_position, t, 0);
+    s.x = x.xyz;
+    s.depth = x.w;
     return s;
 }
 
@@ -47,12 +51,18 @@ fn at_a_neighbour(s: SurfacePoint, q: vec2i, view: vec2u, indirect: vec2u) -> bo
     return found;
 }
 
+// A receiver's G-buffer texel and what the G-buffer holds there.
+struct Receiver {
+    texel: vec2i,
+    surface: SurfacePoint,
+};
+
 // The G-buffer texel receiver q is evaluated on (see above): the cell's centre, or the first
 // of the centres of its four quarters that shows a surface no neighbouring centre shows. One
 // loop takes the centre and then the quarters: a CPU device runs a loop's first turn and every
 // branch for its whole SIMD row, so a separate test of the centre cost the quarters' loop once
 // more for rows whose centres all pass.
-fn receiver_at(q: vec2u, view: vec2u, indirect: vec2u) -> vec2i {
+fn receiver_at(q: vec2u, view: vec2u, indirect: vec2u) -> Receiver {
     let c = receiver_texel(q, view, indirect, params.receiver_offset);
     let qi = vec2i(q);
     let cell = vec2f(view) / vec2f(indirect);
@@ -71,8 +81,8 @@ fn receiver_at(q: vec2u, view: vec2u, indirect: vec2u) -> vec2i {
         }
         let seen_at_centre = k >= 0 && centre.valid && same_plane(centre, s);
         if s.valid && !seen_at_centre && !at_a_neighbour(s, qi, view, indirect) {
-            return t;
+            return Receiver(t, s);
         }
     }
-    return c;
+    return Receiver(c, centre);
 }
