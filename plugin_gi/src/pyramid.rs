@@ -7,7 +7,7 @@
 use engine::graph::BufferDesc;
 use engine::wgpu;
 
-use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
+use crate::bindings::{bind, compute_pipeline, compute_pipeline_with, layout, Resource as R, Slot as S};
 use crate::gpu_types::{Levels, NODE_SIZE};
 use crate::quadtree::Quadtree;
 use crate::shader::module;
@@ -47,9 +47,10 @@ pub struct PyramidBindings<'a> {
     pub blocks: bool,
 }
 
-/// Where the base's flux comes from (GiParams.source): each source, and each kind of base
-/// (single lamp-view texels or blocks of them), has its own entry point, so a pipeline compiles
-/// only its own way (a CPU device runs both sides of a branch on a uniform value).
+/// Where the base's flux comes from (GiParams.source). Each source, and each kind of base
+/// (single lamp-view texels or blocks of them), has its own pipeline, made with the shader's
+/// override constants, so it compiles only its own way (a CPU device runs both sides of a
+/// branch on a uniform value).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FluxSource {
     /// The headlamp's light on the lamp view (the first bounce).
@@ -85,12 +86,15 @@ impl PyramidPipelines {
         let module = module(device, "gi pyramid", SHADER);
         let layouts = [Some(globals), Some(&layout)];
         Self {
-            flux: ["texels", "blocks"].map(|base| {
-                let entry = match source {
-                    FluxSource::Lamp => format!("flux_lamp_{base}"),
-                    FluxSource::Bounce => format!("flux_bounce_{base}"),
+            flux: [false, true].map(|blocks| {
+                // (FROM_LAMP and FROM_BOUNCE in the shader.)
+                let from = match source {
+                    FluxSource::Lamp => 0.0,
+                    FluxSource::Bounce => 1.0,
                 };
-                compute_pipeline(device, &format!("gi {entry}"), &module, &entry, &layouts)
+                let constants = [("FLUX_SOURCE", from), ("FLUX_BLOCKS", f64::from(u8::from(blocks)))];
+                let label = format!("gi flux ({source:?}, blocks {blocks})");
+                compute_pipeline_with(device, &label, &module, "flux_levels", &layouts, &constants)
             }),
             reduce: compute_pipeline(device, "gi reduce", &module, "reduce", &layouts),
             layout,

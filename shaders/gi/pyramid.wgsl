@@ -1,10 +1,11 @@
 // GI flux pyramid: turns the lamp-view G-buffer into reflected flux per texel and reduces it
 // into a quadtree of reflection lights with the article's merge filter, in two dispatches:
-// `flux_*` writes levels 0–3 (each workgroup reduces its 8×8 texels in workgroup memory) and
-// `reduce` levels 4–6 from level 3 the same way. There is a `flux_*` entry point for each
-// source of the flux (lamp, bounce) and each kind of base (single texels, blocks), so that
-// each pipeline compiles only its own way: a CPU device runs both sides of a branch, on a
-// uniform value too (the bounce's side cost the first bounce's pyramid an eighth of its time).
+// `flux_levels` writes levels 0–3 (each workgroup reduces its 8×8 texels in workgroup memory)
+// and `reduce` levels 4–6 from level 3 the same way. Where the flux comes from (lamp, bounce)
+// and what the base's texels are (single lamp-view texels, blocks) are constants each
+// pipeline is made with, so that it compiles only its own way: a CPU device runs both sides of
+// a branch, on a uniform value too (the bounce's side cost the first bounce's pyramid an eighth
+// of its time).
 //
 // The base (level 0) is the lamp view reduced to params.flux_size: each base texel merges its
 // block of lamp-view texels as the levels above merge theirs. Attached, the base is as fine as
@@ -24,15 +25,18 @@
 @group(1) @binding(5) var<storage, read_write> nodes: array<Node>;
 @group(1) @binding(6) var flux_out: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(7) var flux_view_out: texture_storage_2d<rgba16float, write>;
-// The previous bounce's irradiance (only read by `flux_bounce_*`).
+// The previous bounce's irradiance (only read where FLUX_SOURCE is FROM_BOUNCE).
 @group(1) @binding(8) var previous_irradiance: texture_2d<f32>;
 
 var<workgroup> wide: array<Node, 64>;
 var<workgroup> narrow: array<Node, 16>;
 
-// Where a flux texel's flux comes from (the entry point's, as params.source says).
+// Where a flux texel's flux comes from: FROM_LAMP or FROM_BOUNCE (as params.source says).
 const FROM_LAMP: u32 = 0u;
 const FROM_BOUNCE: u32 = 1u;
+override FLUX_SOURCE: u32 = FROM_LAMP;
+// Whether the base's texels are blocks of lamp-view texels (as params.flux_block > 1 says).
+override FLUX_BLOCKS: bool = false;
 
 fn store_node(level: u32, t: vec2u, node: Node) {
     let l = table.levels[level];
@@ -209,7 +213,7 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u, source: u32) -> Node {
 // Texel `id` of the flux G-buffer: the block of lamp-view texels it stands for, every one of
 // them a sender merged into it (not the one at its centre alone, which jumped from surface to
 // surface as the view moved and made the senders shimmer).
-// (`blocks`: the entry point's, as params.flux_block > 1 says.)
+// (`blocks`: FLUX_BLOCKS.)
 fn texel_node(id: vec2u, source: u32, blocks: bool) -> Node {
     let view = textureDimensions(gbuffer_normal);
     // The block's side: the power of two the view was halved by. Blocks begin
@@ -249,27 +253,9 @@ fn flux(id: vec2u, local: vec2u, group: vec2u, source: u32, blocks: bool) {
 }
 
 @compute @workgroup_size(8, 8)
-fn flux_lamp_texels(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
+fn flux_levels(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
     @builtin(workgroup_id) group: vec3u) {
-    flux(id.xy, local.xy, group.xy, FROM_LAMP, false);
-}
-
-@compute @workgroup_size(8, 8)
-fn flux_lamp_blocks(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
-    @builtin(workgroup_id) group: vec3u) {
-    flux(id.xy, local.xy, group.xy, FROM_LAMP, true);
-}
-
-@compute @workgroup_size(8, 8)
-fn flux_bounce_texels(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
-    @builtin(workgroup_id) group: vec3u) {
-    flux(id.xy, local.xy, group.xy, FROM_BOUNCE, false);
-}
-
-@compute @workgroup_size(8, 8)
-fn flux_bounce_blocks(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
-    @builtin(workgroup_id) group: vec3u) {
-    flux(id.xy, local.xy, group.xy, FROM_BOUNCE, true);
+    flux(id.xy, local.xy, group.xy, FLUX_SOURCE, FLUX_BLOCKS);
 }
 
 @compute @workgroup_size(8, 8)
