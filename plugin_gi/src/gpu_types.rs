@@ -174,6 +174,7 @@ pub const GPU_ONLY: &[(&str, &str)] = &[
     ("Sums", "a function's value, never in a buffer"),
     ("SamplePlace", "a function's value, never in a buffer"),
     ("SurfacePoint", "a function's value, never in a buffer"),
+    ("PlacedReceiver", "a function's value, never in a buffer"),
     ("Sequence", "a function's value, never in a buffer"),
     ("Lanes", "a function's value, never in a buffer"),
     ("DotOut", "stage IO between vertex and fragment shaders"),

@@ -52,7 +52,7 @@ fn at_a_neighbour(s: SurfacePoint, q: vec2i, view: vec2u, indirect: vec2u) -> bo
 }
 
 // A receiver's G-buffer texel and what the G-buffer holds there.
-struct Receiver {
+struct PlacedReceiver {
     texel: vec2i,
     surface: SurfacePoint,
 };
@@ -62,7 +62,7 @@ struct Receiver {
 // loop takes the centre and then the quarters: a CPU device runs a loop's first turn and every
 // branch for its whole SIMD row, so a separate test of the centre cost the quarters' loop once
 // more for rows whose centres all pass.
-fn receiver_at(q: vec2u, view: vec2u, indirect: vec2u) -> Receiver {
+fn receiver_at(q: vec2u, view: vec2u, indirect: vec2u) -> PlacedReceiver {
     let c = receiver_texel(q, view, indirect, params.receiver_offset);
     let qi = vec2i(q);
     let cell = vec2f(view) / vec2f(indirect);
@@ -81,8 +81,8 @@ fn receiver_at(q: vec2u, view: vec2u, indirect: vec2u) -> Receiver {
         }
         let seen_at_centre = k >= 0 && centre.valid && same_plane(centre, s);
         if s.valid && !seen_at_centre && !at_a_neighbour(s, qi, view, indirect) {
-            return Receiver(t, s);
+            return PlacedReceiver(t, s);
         }
     }
-    return Receiver(c, centre);
+    return PlacedReceiver(c, centre);
 }
