@@ -85,13 +85,13 @@ impl PyramidPipelines {
         );
         let module = module(device, "gi pyramid", SHADER);
         let layouts = [Some(globals), Some(&layout)];
+        // (FROM_LAMP and FROM_BOUNCE in the shader.)
+        let from = match source {
+            FluxSource::Lamp => 0.0,
+            FluxSource::Bounce => 1.0,
+        };
         Self {
             flux: [false, true].map(|blocks| {
-                // (FROM_LAMP and FROM_BOUNCE in the shader.)
-                let from = match source {
-                    FluxSource::Lamp => 0.0,
-                    FluxSource::Bounce => 1.0,
-                };
                 let constants = [("FLUX_SOURCE", from), ("FLUX_BLOCKS", f64::from(u8::from(blocks)))];
                 let label = format!("gi flux ({source:?}, blocks {blocks})");
                 compute_pipeline_with(device, &label, &module, "flux_levels", &layouts, &constants)

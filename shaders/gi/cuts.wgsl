@@ -106,12 +106,11 @@ fn tile_bounds(origin: vec2u, recorded: bool) -> TileBounds {
                 receiver_texels[slot] = pack_texel(r.texel);
                 s = r.surface;
             }
-            let n = s.n;
             if s.valid {
                 let x = vec4f(s.x, s.depth);
                 points[i] = x;
                 centre += x.xyz;
-                normal += n.xyz;
+                normal += s.n;
                 count++;
                 quarters[quarter(i)] += vec4f(x.xyz, 1.0);
                 depths = vec2f(min(depths.x, x.w), max(depths.y, x.w));

@@ -76,7 +76,7 @@ fn reduce_three_levels(local: vec2u, group: vec2u, base: u32) {
 
 // One texel of the lamp view (at `t`, of a view of `view` texels) as a light: zero flux where
 // nothing is seen or nothing is lit.
-fn view_texel_node(t: vec2u, view: vec2u, source: u32) -> Node {
+fn view_texel_node(t: vec2u, view: vec2u) -> Node {
     var node: Node;
     node.merged = 1u;
     if any(t >= view) {
@@ -90,7 +90,7 @@ fn view_texel_node(t: vec2u, view: vec2u, source: u32) -> Node {
     let x = textureLoad(gbuffer_position, vec2i(t), 0).xyz;
     let rho = textureLoad(gbuffer_albedo, vec2i(t), 0).rgb;
     let area = texel_area(omega, x, normal.xyz, globals.lamp_pos.xyz);
-    if source == FROM_LAMP {
+    if FLUX_SOURCE == FROM_LAMP {
         node.flux = lamp_reflected_flux(rho, x, omega);
     } else {
         // The irradiance sample nearest the texel's (receiver_texel's inverse).
@@ -157,7 +157,7 @@ fn half_index(id: vec2u, second: bool) -> u32 {
 // the rest. Where the block spans a fold the cut's near list takes those two lights, each on
 // its own plane, instead of the one light tilted between the planes, which a receiver next to
 // the fold sees from behind.
-fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u, source: u32) -> Node {
+fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     var first = Sums();
     var second = Sums();
     var facing = vec3f(0.0);
@@ -169,7 +169,7 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u, source: u32) -> Node {
     let step = max(k / 4u, 1u);
     let n = k / step;
     for (var j = 0u; j < n * n; j++) {
-        var texel = view_texel_node(t + vec2u(j % n, j / n) * step, view, source);
+        var texel = view_texel_node(t + vec2u(j % n, j / n) * step, view);
         let share = f32(step * step);
         texel.flux *= share;
         texel.area *= share;
@@ -213,8 +213,7 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u, source: u32) -> Node {
 // Texel `id` of the flux G-buffer: the block of lamp-view texels it stands for, every one of
 // them a sender merged into it (not the one at its centre alone, which jumped from surface to
 // surface as the view moved and made the senders shimmer).
-// (`blocks`: FLUX_BLOCKS.)
-fn texel_node(id: vec2u, source: u32, blocks: bool) -> Node {
+fn texel_node(id: vec2u) -> Node {
     let view = textureDimensions(gbuffer_normal);
     // The block's side: the power of two the view was halved by. Blocks begin
     // `sender_offset` texels before the view's corner, and their grid moves with the picture
@@ -225,12 +224,12 @@ fn texel_node(id: vec2u, source: u32, blocks: bool) -> Node {
     var omega: f32;
     // Where the flux view (one texel a block over the view, no padding) shows it.
     var shown = vec2i(id);
-    if !blocks {
-        node = view_texel_node(id, view, source);
+    if !FLUX_BLOCKS {
+        node = view_texel_node(id, view);
         omega = texel_solid_angle(id, params.flux_size, params.lamp_tan);
     } else {
         let first = vec2u(vec2i(id * k) - vec2i(params.sender_offset));
-        node = block_node(first, k, view, id, source);
+        node = block_node(first, k, view, id);
         omega = texel_solid_angle(min(first + k / 2u, view - 1u), view, params.lamp_tan) * f32(k * k);
         shown -= vec2i(round(params.sender_offset / f32(k)));
     }
@@ -242,20 +241,16 @@ fn texel_node(id: vec2u, source: u32, blocks: bool) -> Node {
 }
 
 // Levels 0–3 from the flux G-buffer's texels.
-fn flux(id: vec2u, local: vec2u, group: vec2u, source: u32, blocks: bool) {
-    var node: Node;
-    if all(id < params.flux_size) {
-        node = texel_node(id, source, blocks);
-        store_node(0u, id, node);
-    }
-    wide[local.y * 8u + local.x] = node;
-    reduce_three_levels(local, group, 0u);
-}
-
 @compute @workgroup_size(8, 8)
 fn flux_levels(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
     @builtin(workgroup_id) group: vec3u) {
-    flux(id.xy, local.xy, group.xy, FLUX_SOURCE, FLUX_BLOCKS);
+    var node: Node;
+    if all(id.xy < params.flux_size) {
+        node = texel_node(id.xy);
+        store_node(0u, id.xy, node);
+    }
+    wide[local.y * 8u + local.x] = node;
+    reduce_three_levels(local.xy, group.xy, 0u);
 }
 
 @compute @workgroup_size(8, 8)
