@@ -22,9 +22,11 @@ mod occlusion;
 mod patch;
 mod texture;
 mod transport;
+mod visibility;
 mod world;
 
 pub use lamp::Lamp;
 pub use patch::{LitPatch, Patch};
 pub use transport::{polygon_factor, LitPatches, Receiver, NEAR_EDGES};
+pub use visibility::{Cover, Occluders, Seen, VisibilityCube};
 pub use world::{subdivisions, World, DEFAULT_MAX_EDGE, SHADOW_OFFSET};

@@ -17,6 +17,12 @@ use engine::glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
 use crate::patch::LitPatch;
+use crate::visibility::{Cover, Occluders, Seen, VisibilityCube};
+use crate::world::World;
+
+/// How far off its surface a receiver looks from, for the visibility test (metres): its own
+/// surface then lies wholly behind it.
+const RECEIVER_LIFT: f32 = 1e-3;
 
 /// The near field's radius, in patch edges (the `max_edge` the patches were cut with): the
 /// point form's error on a patch of size s at distance d goes as (s/d)², about 1/36 of a
@@ -58,11 +64,30 @@ const CHUNKS_PER_GROUP: usize = 64;
 /// once a receiver (a frame's patches are ~100 MB).
 const RECEIVER_BLOCK: usize = 32;
 
+/// Chunks a block of a group seen in part: one test of the hiders' masks for 64 patches.
+const BLOCK_CHUNKS: usize = 8;
+
+/// The box (centre, half size) that holds the centres of `chunks`' patches (not the padding).
+fn chunks_box(chunks: &[Chunk]) -> (Vec3, Vec3) {
+    let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+    for c in chunks {
+        for l in 0..LANES {
+            if c.px[l] < 1e5 {
+                let p = Vec3::new(c.px[l], c.py[l], c.pz[l]);
+                (lo, hi) = (lo.min(p), hi.max(p));
+            }
+        }
+    }
+    ((lo + hi) * 0.5, (hi - lo) * 0.5)
+}
+
 /// Patches of one triangle, lit on one side: its chunks, the plane they lie on, and the box
 /// that holds their centres.
 #[derive(Clone, Copy, Debug)]
 struct Group {
     chunks: (u32, u32),
+    /// Its patches in `LitPatches::patches`.
+    patches: (u32, u32),
     normal: [f32; 3],
     /// normal · (a centre): the plane.
     offset: f32,
@@ -127,6 +152,7 @@ impl LitPatches {
                 let offset = members.iter().map(|p| normal.dot(p.patch.centre)).fold(f32::NEG_INFINITY, f32::max);
                 Group {
                     chunks: (first, chunks.len() as u32),
+                    patches: (a as u32, b as u32),
                     normal: normal.to_array(),
                     offset,
                     tolerance: 0.01 * members[0].patch.area.sqrt(),
@@ -183,6 +209,83 @@ impl LitPatches {
         e.iter().zip(receivers).map(|(e, r)| (*e * r.albedo.as_dvec3() / PI).as_vec3().to_array()).collect()
     }
 
+    /// Irradiance E at each receiver with every sender tested for occlusion by the level's
+    /// triangles (`world`'s): a [`VisibilityCube`] of `cube` texels a side around each receiver
+    /// decides for each triangle's patches whether all, none or which are seen (rays at its
+    /// silhouettes). The receivers are independent; each costs its cube (O(triangles + texels))
+    /// and the sum over the patches it may see.
+    pub fn irradiance_visible(&self, receivers: &[Receiver], world: &World, cube: usize) -> Vec<[f32; 3]> {
+        self.irradiance_visible_f64(receivers, world, cube).into_iter().map(|e| e.as_vec3().to_array()).collect()
+    }
+
+    /// Reflected radiance L = ρ/π · E with visibility ([`LitPatches::irradiance_visible`]).
+    pub fn radiance_visible(&self, receivers: &[Receiver], world: &World, cube: usize) -> Vec<[f32; 3]> {
+        let e = self.irradiance_visible_f64(receivers, world, cube);
+        e.iter().zip(receivers).map(|(e, r)| (*e * r.albedo.as_dvec3() / PI).as_vec3().to_array()).collect()
+    }
+
+    fn irradiance_visible_f64(&self, receivers: &[Receiver], world: &World, cube: usize) -> Vec<DVec3> {
+        let occluders = Occluders::of(world);
+        receivers
+            .par_iter()
+            // (Each thread keeps one cube and moves it from receiver to receiver.)
+            .map_init(
+                || None,
+                |slot: &mut Option<VisibilityCube>, r| {
+                    if r.normal == Vec3::ZERO || self.patches.is_empty() {
+                        return DVec3::ZERO;
+                    }
+                    let origin = r.position + r.normal * RECEIVER_LIFT;
+                    let view = match slot {
+                        Some(view) => {
+                            view.move_to(&occluders, origin);
+                            view
+                        }
+                        None => slot.insert(VisibilityCube::new(&occluders, origin, cube)),
+                    };
+                    self.irradiance_seen(r, view, &occluders)
+                },
+            )
+            .collect()
+    }
+
+    /// E at `r` from the patches `view` (around r) sees.
+    fn irradiance_seen(&self, r: &Receiver, view: &mut VisibilityCube, occluders: &Occluders) -> DVec3 {
+        let r2 = self.near_radius * self.near_radius;
+        let (x, n) = (r.position.to_array(), r.normal.to_array());
+        let mut e = [0.0f64; 3];
+        let mut add = |a: [f64; 3]| e.iter_mut().zip(a).for_each(|(t, a)| *t += a);
+        for g in self.groups.iter().filter(|g| !group_gives_nothing(g, x, n)) {
+            let members = &self.patches[g.patches.0 as usize..g.patches.1 as usize];
+            let group = &self.chunks[g.chunks.0 as usize..g.chunks.1 as usize];
+            let triangle = members[0].patch.triangle;
+            match view.seen(occluders, triangle) {
+                Seen::Nothing => {}
+                Seen::All => add(group_sum(group, x, n, r2)),
+                // Blocks of chunks that the triangle's hiders leave wholly clear or wholly
+                // hidden go at once; the rest patch by patch.
+                Seen::Part => {
+                    for (b, block) in group.chunks(BLOCK_CHUNKS).enumerate() {
+                        let (centre, half) = chunks_box(block);
+                        match view.cover_of_box(triangle, centre, half) {
+                            Some(Cover::Hidden) => {}
+                            Some(Cover::Clear) => add(group_sum(block, x, n, r2)),
+                            _ => {
+                                let first = b * BLOCK_CHUNKS * LANES;
+                                let last = (first + BLOCK_CHUNKS * LANES).min(members.len());
+                                for p in &members[first..last] {
+                                    if view.sees(occluders, p.patch.centre, triangle) {
+                                        add(point_form(p, x, n, r2));
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        DVec3::from(e) + self.near_field_where(r, r2, |p| view.sees(occluders, p.patch.centre, p.patch.triangle))
+    }
     /// E at one receiver, in double precision.
     pub fn irradiance_at(&self, r: &Receiver) -> DVec3 {
         self.irradiance_f64(std::slice::from_ref(r))[0]
@@ -212,6 +315,11 @@ impl LitPatches {
     /// The patches within the near radius (exactly those the far sum left out: the same f32
     /// distance, the same comparison), each by its polygon form.
     fn near_field(&self, r: &Receiver, r2: f32) -> DVec3 {
+        self.near_field_where(r, r2, |_| true)
+    }
+
+    /// [`LitPatches::near_field`] over the patches `keep` keeps.
+    fn near_field_where(&self, r: &Receiver, r2: f32, mut keep: impl FnMut(&LitPatch) -> bool) -> DVec3 {
         let x = r.position.to_array();
         let lo = cell_of(r.position - Vec3::splat(self.near_radius), self.near_radius);
         let hi = cell_of(r.position + Vec3::splat(self.near_radius), self.near_radius);
@@ -225,7 +333,7 @@ impl LitPatches {
                         let c = p.patch.centre;
                         let (vx, vy, vz) = (x[0] - c.x, x[1] - c.y, x[2] - c.z);
                         let d2 = vx * vx + vy * vy + vz * vz;
-                        if d2 <= r2 {
+                        if d2 <= r2 && keep(p) {
                             let corners = p.patch.corners.map(Vec3::as_dvec3);
                             let factor = polygon_factor(
                                 corners,
@@ -302,43 +410,69 @@ fn far_field_avx2(chunks: &[Chunk], groups: &[Group], points: &[([f32; 3], [f32;
     far_field_lanes(chunks, groups, points, r2, out)
 }
 
-// One lane index reads nine arrays: a range loop is what vectorises.
-#[allow(clippy::needless_range_loop)]
 #[inline(always)]
 fn far_field_lanes(chunks: &[Chunk], groups: &[Group], points: &[([f32; 3], [f32; 3])], r2: f32, out: &mut [[f64; 3]]) {
-    let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     for g in groups {
         let group = &chunks[g.chunks.0 as usize..g.chunks.1 as usize];
         for (&(x, n), total) in points.iter().zip(out.iter_mut()) {
-            // Exact zeros: the receiver not in front of the group's plane, or every patch of
-            // the group behind the receiver's plane (the box's nearest corner to it is).
-            let reach = n[0].abs() * g.half[0] + n[1].abs() * g.half[1] + n[2].abs() * g.half[2];
-            if dot(g.normal, x) - g.offset <= g.tolerance || dot(n, g.centre) - dot(n, x) + reach <= 0.0 {
+            if group_gives_nothing(g, x, n) {
                 continue;
             }
-            let mut acc = [[0.0f32; LANES]; 3];
-            for c in group {
-                for l in 0..LANES {
-                    // v from the patch to the receiver.
-                    let vx = x[0] - c.px[l];
-                    let vy = x[1] - c.py[l];
-                    let vz = x[2] - c.pz[l];
-                    let d2 = vx * vx + vy * vy + vz * vz;
-                    // d·cos_s and −d·cos_r, each kept to its lit side.
-                    let s = c.nx[l] * vx + c.ny[l] * vy + c.nz[l] * vz;
-                    let r = n[0] * vx + n[1] * vy + n[2] * vz;
-                    let s = if s > 0.0 { s } else { 0.0 };
-                    let r = if r < 0.0 { r } else { 0.0 };
-                    let w = s * r / (d2 * d2);
-                    let w = if d2 > r2 { w } else { 0.0 };
-                    acc[0][l] -= w * c.fr[l];
-                    acc[1][l] -= w * c.fg[l];
-                    acc[2][l] -= w * c.fb[l];
-                }
-            }
-            for (t, a) in total.iter_mut().zip(&acc) {
-                *t += a.iter().map(|&v| v as f64).sum::<f64>();
+            for (t, a) in total.iter_mut().zip(group_sum(group, x, n, r2)) {
+                *t += a;
             }
         }
     }
+}
+
+fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Exact zeros: the receiver at `x` (normal `n`) not in front of the group's plane, or every
+/// patch of the group behind the receiver's plane (the box's nearest corner to it is).
+#[inline(always)]
+fn group_gives_nothing(g: &Group, x: [f32; 3], n: [f32; 3]) -> bool {
+    let reach = n[0].abs() * g.half[0] + n[1].abs() * g.half[1] + n[2].abs() * g.half[2];
+    dot(g.normal, x) - g.offset <= g.tolerance || dot(n, g.centre) - dot(n, x) + reach <= 0.0
+}
+
+/// The point-form sum of a group's patches outside the near radius at `x` (normal `n`).
+// One lane index reads nine arrays: a range loop is what vectorises.
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn group_sum(group: &[Chunk], x: [f32; 3], n: [f32; 3], r2: f32) -> [f64; 3] {
+    let mut acc = [[0.0f32; LANES]; 3];
+    for c in group {
+        for l in 0..LANES {
+            // v from the patch to the receiver.
+            let vx = x[0] - c.px[l];
+            let vy = x[1] - c.py[l];
+            let vz = x[2] - c.pz[l];
+            let d2 = vx * vx + vy * vy + vz * vz;
+            // d·cos_s and −d·cos_r, each kept to its lit side.
+            let s = c.nx[l] * vx + c.ny[l] * vy + c.nz[l] * vz;
+            let r = n[0] * vx + n[1] * vy + n[2] * vz;
+            let s = if s > 0.0 { s } else { 0.0 };
+            let r = if r < 0.0 { r } else { 0.0 };
+            let w = s * r / (d2 * d2);
+            let w = if d2 > r2 { w } else { 0.0 };
+            acc[0][l] -= w * c.fr[l];
+            acc[1][l] -= w * c.fg[l];
+            acc[2][l] -= w * c.fb[l];
+        }
+    }
+    acc.map(|a| a.iter().map(|&v| v as f64).sum::<f64>())
+}
+
+/// One patch's term of [`group_sum`], the same arithmetic (0 inside the near radius).
+fn point_form(p: &LitPatch, x: [f32; 3], n: [f32; 3], r2: f32) -> [f64; 3] {
+    let c = p.patch.centre;
+    let (vx, vy, vz) = (x[0] - c.x, x[1] - c.y, x[2] - c.z);
+    let d2 = vx * vx + vy * vy + vz * vz;
+    let s = (p.normal.x * vx + p.normal.y * vy + p.normal.z * vz).max(0.0);
+    let r = (n[0] * vx + n[1] * vy + n[2] * vz).min(0.0);
+    let w = if d2 > r2 { s * r / (d2 * d2) } else { 0.0 };
+    let f = p.flux / std::f32::consts::PI;
+    [-(w * f.x) as f64, -(w * f.y) as f64, -(w * f.z) as f64]
 }

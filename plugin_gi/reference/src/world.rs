@@ -134,6 +134,12 @@ impl World {
         self.triangles.len()
     }
 
+    /// Each triangle's corners and whether it is drawn from both sides, in [`Patch::triangle`]'s
+    /// numbering.
+    pub(crate) fn occluder_triangles(&self) -> impl Iterator<Item = ([Vec3; 3], bool)> + '_ {
+        self.triangles.iter().map(|t| (t.corners, t.double_sided))
+    }
+
     /// Every patch of the level for patches of at most `max_edge`, triangle by triangle: for
     /// tests and small scenes (a level has millions).
     pub fn patches(&self, max_edge: f32) -> Vec<Patch> {
