@@ -70,7 +70,8 @@ pub struct RenderArgs {
     pub size: (u32, u32),
     /// What to show: final, direct, albedo, normal, depth; with the GI also indirect, flux,
     /// lights, reference (the exact one bounce from patches fixed in the world, computed on the
-    /// CPU) and reference_screen (the GPU's, every texel of the lamp's view a sender).
+    /// CPU), reference_vis (the same with each sender–receiver pair tested for occlusion by the
+    /// level's triangles) and reference_screen (the GPU's, every texel of the lamp's view a sender).
     #[arg(long, default_value = "final")]
     pub view: String,
     /// Camera eye and target: EX,EY,EZ:TX,TY,TZ (metres).

@@ -11,6 +11,8 @@ use crate::world_reference::{tonemap, WorldReference};
 
 /// The view name of the world-fixed reference, computed on the CPU rather than drawn by a pass.
 pub const WORLD_REFERENCE_VIEW: &str = "reference";
+/// The same with every sender–receiver pair tested for occlusion: no light through walls.
+pub const WORLD_REFERENCE_VIS_VIEW: &str = "reference_vis";
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let kind = engine::output::kind_for_path(&args.out)?;
@@ -22,8 +24,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if let Some((eye, target)) = args.lamp {
         view.headlamp.detach_looking_at(eye, target);
     }
-    let image = if args.view == WORLD_REFERENCE_VIEW {
+    let image = if args.view == WORLD_REFERENCE_VIEW || args.view == WORLD_REFERENCE_VIS_VIEW {
         let mut reference = WorldReference::new(&gpu, &level.scene)?;
+        if args.view == WORLD_REFERENCE_VIS_VIEW {
+            reference = reference.with_visibility();
+        }
         let frame = reference.render(&gpu, &view, args.size, args.patch_size())?;
         println!(
             "reference: {} lit patches of at most {} cm ({:.2} s), {} receivers ({:.2} s)",
@@ -42,7 +47,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         let mut renderer = Renderer::new(&gpu, &level.scene, plugins)?;
         renderer
             .set_view(&args.view)
-            .map_err(|e| anyhow!("--view: {e}, or {WORLD_REFERENCE_VIEW} (the world-fixed reference)"))?;
+            .map_err(|e| {
+                anyhow!(
+                    "--view: {e}, or {WORLD_REFERENCE_VIEW} (the world-fixed reference), or {WORLD_REFERENCE_VIS_VIEW} (the same with visibility)"
+                )
+            })?;
         let target = HeadlessTarget::new(&gpu, args.size.0, args.size.1, kind);
         target.render(&gpu, &mut renderer, &view)?
     };

@@ -281,6 +281,23 @@ fn indirect_exr_of_an_unseen_obj_cornell_box_matches_the_brute_force_reference()
     assert!(error <= 0.10, "indirect differs from the brute-force reference by {error:.3}");
     let screen_error = plugin_gi::metrics::block_error(&rgba(&screen), &rgba(&reference));
     assert!(screen_error <= 0.05, "the two references differ by {screen_error:.3}");
+    // With visibility the block shades the floor behind it and the walls beside it: no pixel
+    // gains light, some lose it (the box's own corners see nothing in the way).
+    let visible = render_exr(&obj, &dir.join("reference_vis.exr"), "reference_vis", &[]);
+    let mut lost = 0;
+    for (v, r) in visible.pixels().zip(reference.pixels()) {
+        for c in 0..3 {
+            assert!(v[c] <= r[c] * (1.0 + 1e-4) + 1e-9, "visibility added light: {} > {}", v[c], r[c]);
+        }
+        lost += usize::from(v[0] < r[0] * 0.99);
+    }
+    let (seen, all): (f64, f64) =
+        (visible.pixels().map(|p| p[0] as f64).sum(), reference.pixels().map(|p| p[0] as f64).sum());
+    println!(
+        "reference_vis: {lost} pixels lose more than 1 %; {:.1} % of the bounce hidden",
+        100.0 * (1.0 - seen / all)
+    );
+    assert!(lost > 100 && seen < 0.99 * all, "the block hides nothing: {lost} pixels, {seen} of {all}");
     // A PNG of it is the tonemapped picture.
     let png = dir.join("reference.png");
     let out = headlamp(&[

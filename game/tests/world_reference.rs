@@ -1,6 +1,7 @@
 //! The world-fixed reference on the GPU's receivers (lavapipe): its pixels are where the
 //! G-buffer says, it integrates the same bounce as the GPU's lamp-texel reference
-//! (`reference_screen`), and it has converged at its 2 cm patches.
+//! (`reference_screen`), and it has converged at its 2 cm patches; its visibility test agrees
+//! with exact rays in the Cellar.
 
 mod common;
 
@@ -10,8 +11,9 @@ use engine::glam::Vec3;
 use engine::gpu::Gpu;
 use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::renderer::Renderer;
-use game::world_reference::WorldReference;
-use gi_reference::DEFAULT_MAX_EDGE;
+use engine::start_view::{initial_view, ViewOverrides};
+use game::world_reference::{WorldReference, VISIBILITY_CUBE};
+use gi_reference::{Lamp, Occluders, VisibilityCube, World, DEFAULT_MAX_EDGE, SHADOW_OFFSET};
 use plugin_gi::metrics::block_error;
 
 const SIZE: (u32, u32) = (160, 120);
@@ -81,5 +83,55 @@ fn the_world_reference_integrates_the_bounce_the_gpu_reference_does_and_has_conv
         println!("  2 cm vs 1 cm patches: {:.3} % ({} lit patches)", 100.0 * converged, fine.lit_patches);
         assert!(fine.lit_patches > 3 * world.lit_patches);
         assert!(converged <= 0.005, "2 cm patches are {converged:.4} off 1 cm ones");
+    }
+}
+
+/// On the Cellar's own triangles, from the pixels of two views, the visibility cube sees what
+/// an exact ray (parry's, through the level's BVH) sees, for every lit patch that can light a
+/// receiver, weighted by the light the pair exchanges.
+#[test]
+fn in_the_cellar_the_visibility_cube_sees_what_rays_see() {
+    let gpu = Gpu::headless().unwrap();
+    let level = engine::scene::load_level(&game::default_level()).unwrap();
+    let corridor = Some((Vec3::new(-1.8, 1.6, -7.0), Vec3::new(-6.0, 1.2, -7.0)));
+    let mut reference = WorldReference::new(&gpu, &level.scene).unwrap();
+    let world = World::new(&level.scene);
+    let occluders = Occluders::of(&world);
+    let size = (16, 12);
+    for look in [None, corridor] {
+        let v = initial_view(&level, &ViewOverrides { look, fov_y: None });
+        let receivers = reference.receivers(&gpu, &v, size).unwrap();
+        let lamp = Lamp::new(&v.headlamp, &v.camera, size.0 as f32 / size.1 as f32);
+        let patches = world.lit_patches(&lamp, 0.05);
+        let (mut disagree, mut hidden, mut total) = (0.0f64, 0.0f64, 0.0f64);
+        for r in receivers.iter().filter(|r| r.normal != Vec3::ZERO) {
+            // (From 1 mm off the surface, as the reference looks.)
+            let origin = r.position + r.normal * 1e-3;
+            let mut cube = VisibilityCube::new(&occluders, origin, VISIBILITY_CUBE);
+            for p in &patches {
+                let d = p.patch.centre - r.position;
+                let (cos_r, cos_s) = (r.normal.dot(d), -p.normal.dot(d));
+                if cos_r <= 0.0 || cos_s <= 0.0 {
+                    continue;
+                }
+                let transfer = f64::from(cos_r * cos_s / d.length_squared().powi(2) * p.flux.element_sum());
+                let to = p.patch.centre - origin;
+                let ray = world.visible(origin, p.patch.centre - to * (SHADOW_OFFSET / to.length()));
+                total += transfer;
+                hidden += if ray { 0.0 } else { transfer };
+                if cube.sees(&occluders, p.patch.centre, p.patch.triangle) != ray {
+                    disagree += transfer;
+                }
+            }
+        }
+        println!(
+            "{}: {:.1} % of the transfer hidden; the cube and the rays disagree on {:.2e} of it",
+            if look.is_none() { "spawn" } else { "corridor" },
+            100.0 * hidden / total,
+            disagree / total
+        );
+        assert!(hidden > 0.01 * total, "the view hides something");
+        // (Pairs a grazing ray may call either way, within f32 rounding.)
+        assert!(disagree <= 1e-6 * total, "the cube and the rays disagree on {:.2e} of the transfer", disagree / total);
     }
 }
