@@ -110,7 +110,7 @@ impl WorldReference {
             (0..receivers.len()).filter(|&i| mask.is_none_or(|m| m[i]) && receivers[i].normal != Vec3::ZERO).collect();
         let picked: Vec<Receiver> = chosen.iter().map(|&i| receivers[i]).collect();
         let radiance = if self.visibility {
-            lit.radiance_visible(&picked, &self.world, VISIBILITY_CUBE)
+            lit.radiance_visible(&picked, &self.world.occluders(), VISIBILITY_CUBE)
         } else {
             lit.radiance(&picked)
         };

@@ -13,7 +13,7 @@ use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
 use engine::renderer::Renderer;
 use engine::start_view::{initial_view, ViewOverrides};
 use game::world_reference::{WorldReference, VISIBILITY_CUBE};
-use gi_reference::{Lamp, Occluders, VisibilityCube, World, DEFAULT_MAX_EDGE, SHADOW_OFFSET};
+use gi_reference::{Lamp, VisibilityCube, World, DEFAULT_MAX_EDGE, SHADOW_OFFSET};
 use plugin_gi::metrics::block_error;
 
 const SIZE: (u32, u32) = (160, 120);
@@ -96,7 +96,7 @@ fn in_the_cellar_the_visibility_cube_sees_what_rays_see() {
     let corridor = Some((Vec3::new(-1.8, 1.6, -7.0), Vec3::new(-6.0, 1.2, -7.0)));
     let mut reference = WorldReference::new(&gpu, &level.scene).unwrap();
     let world = World::new(&level.scene);
-    let occluders = Occluders::of(&world);
+    let occluders = world.occluders();
     let size = (16, 12);
     for look in [None, corridor] {
         let v = initial_view(&level, &ViewOverrides { look, fov_y: None });

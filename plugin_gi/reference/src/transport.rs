@@ -18,7 +18,6 @@ use rayon::prelude::*;
 
 use crate::patch::LitPatch;
 use crate::visibility::{Cover, Occluders, Seen, VisibilityCube};
-use crate::world::World;
 
 /// How far off its surface a receiver looks from, for the visibility test (metres): its own
 /// surface then lies wholly behind it.
@@ -210,22 +209,21 @@ impl LitPatches {
     }
 
     /// Irradiance E at each receiver with every sender tested for occlusion by the level's
-    /// triangles (`world`'s): a [`VisibilityCube`] of `cube` texels a side around each receiver
+    /// triangles (`occluders`, [`World::occluders`](crate::World::occluders)): a [`VisibilityCube`] of `cube` texels a side around each receiver
     /// decides for each triangle's patches whether all, none or which are seen (rays at its
     /// silhouettes). The receivers are independent; each costs its cube (O(triangles + texels))
     /// and the sum over the patches it may see.
-    pub fn irradiance_visible(&self, receivers: &[Receiver], world: &World, cube: usize) -> Vec<[f32; 3]> {
-        self.irradiance_visible_f64(receivers, world, cube).into_iter().map(|e| e.as_vec3().to_array()).collect()
+    pub fn irradiance_visible(&self, receivers: &[Receiver], occluders: &Occluders, cube: usize) -> Vec<[f32; 3]> {
+        self.irradiance_visible_f64(receivers, occluders, cube).into_iter().map(|e| e.as_vec3().to_array()).collect()
     }
 
     /// Reflected radiance L = ρ/π · E with visibility ([`LitPatches::irradiance_visible`]).
-    pub fn radiance_visible(&self, receivers: &[Receiver], world: &World, cube: usize) -> Vec<[f32; 3]> {
-        let e = self.irradiance_visible_f64(receivers, world, cube);
+    pub fn radiance_visible(&self, receivers: &[Receiver], occluders: &Occluders, cube: usize) -> Vec<[f32; 3]> {
+        let e = self.irradiance_visible_f64(receivers, occluders, cube);
         e.iter().zip(receivers).map(|(e, r)| (*e * r.albedo.as_dvec3() / PI).as_vec3().to_array()).collect()
     }
 
-    fn irradiance_visible_f64(&self, receivers: &[Receiver], world: &World, cube: usize) -> Vec<DVec3> {
-        let occluders = Occluders::of(world);
+    fn irradiance_visible_f64(&self, receivers: &[Receiver], occluders: &Occluders, cube: usize) -> Vec<DVec3> {
         receivers
             .par_iter()
             // (Each thread keeps one cube and moves it from receiver to receiver.)
@@ -238,12 +236,12 @@ impl LitPatches {
                     let origin = r.position + r.normal * RECEIVER_LIFT;
                     let view = match slot {
                         Some(view) => {
-                            view.move_to(&occluders, origin);
+                            view.move_to(occluders, origin);
                             view
                         }
-                        None => slot.insert(VisibilityCube::new(&occluders, origin, cube)),
+                        None => slot.insert(VisibilityCube::new(occluders, origin, cube)),
                     };
-                    self.irradiance_seen(r, view, &occluders)
+                    self.irradiance_seen(r, view, occluders)
                 },
             )
             .collect()

@@ -17,8 +17,6 @@ use std::collections::HashMap;
 
 use engine::glam::{Vec2, Vec3};
 
-use crate::world::World;
-
 /// The near plane of each face (metres): nothing nearer than this hides anything.
 const NEAR: f32 = 1e-5;
 
@@ -91,8 +89,10 @@ pub struct Occluders {
 }
 
 impl Occluders {
-    pub fn of(world: &World) -> Self {
-        let (triangles, double_sided): (Vec<[Vec3; 3]>, _) = world.occluder_triangles().unzip();
+    /// From triangles (corners in their winding) and whether each hides from both sides
+    /// ([`World::occluders`](crate::World::occluders) gives a level's).
+    pub fn new(level: impl Iterator<Item = ([Vec3; 3], bool)>) -> Self {
+        let (triangles, double_sided): (Vec<[Vec3; 3]>, _) = level.unzip();
         let planes = triangles
             .iter()
             .map(|[a, b, c]| {

@@ -13,6 +13,7 @@ use crate::occlusion::OcclusionMap;
 use crate::patch::{LitPatch, Patch};
 use crate::texture::{slot_uv, LinearTexture};
 use crate::transport::LitPatches;
+use crate::visibility::Occluders;
 
 /// The longest edge of a patch unless told otherwise (metres).
 pub const DEFAULT_MAX_EDGE: f32 = 0.02;
@@ -136,8 +137,9 @@ impl World {
 
     /// Each triangle's corners and whether it is drawn from both sides, in [`Patch::triangle`]'s
     /// numbering.
-    pub(crate) fn occluder_triangles(&self) -> impl Iterator<Item = ([Vec3; 3], bool)> + '_ {
-        self.triangles.iter().map(|t| (t.corners, t.double_sided))
+    /// The level's triangles as occluders, for visibility between senders and receivers.
+    pub fn occluders(&self) -> Occluders {
+        Occluders::new(self.triangles.iter().map(|t| (t.corners, t.double_sided)))
     }
 
     /// Every patch of the level for patches of at most `max_edge`, triangle by triangle: for

@@ -6,7 +6,7 @@ use engine::camera::Camera;
 use engine::glam::{Quat, Vec3};
 use engine::headlamp::Headlamp;
 use engine::scene::{HeadlampProfile, IntensityDistribution, Material, Mesh, Scene, Vertex};
-use gi_reference::{Lamp, LitPatches, Occluders, Patch, Receiver, VisibilityCube, World};
+use gi_reference::{Lamp, LitPatches, Patch, Receiver, VisibilityCube, World};
 
 /// A uniform lamp of intensity `power` put down at `eye` looking at `target`.
 fn lamp(eye: Vec3, target: Vec3, fov_deg: f32, power: f32) -> Lamp {
@@ -74,7 +74,7 @@ fn ray_end(p: &Patch, from: Vec3) -> Vec3 {
 #[test]
 fn the_cube_sees_what_rays_see_whatever_its_size() {
     let world = World::new(&box_with_a_block());
-    let occluders = Occluders::of(&world);
+    let occluders = world.occluders();
     let patches = world.patches(0.05);
     // Points 1 mm off the box's surfaces and the block's, and the way those face.
     let receivers = [
@@ -128,7 +128,7 @@ fn a_wall_hides_the_room_behind_it_whatever_the_cube_size() {
     quad(&mut s, [v(0.0, 0.0, 1.0), v(2.0, 0.0, 1.0), v(2.0, 0.0, -1.0), v(0.0, 0.0, -1.0)], false); // floor x > 0
     quad(&mut s, [v(-2.0, 0.0, 1.0), v(0.0, 0.0, 1.0), v(0.0, 0.0, -1.0), v(-2.0, 0.0, -1.0)], false); // floor x < 0
     let world = World::new(&s);
-    let occluders = Occluders::of(&world);
+    let occluders = world.occluders();
     let behind: Vec<Patch> = world.patches(0.05).into_iter().filter(|p| p.centre.x > 0.01).collect();
     assert!(!behind.is_empty());
     for n in [4, 64, 256] {
@@ -170,7 +170,7 @@ fn a_receiver_the_wall_hides_from_every_lit_patch_gets_exactly_zero_and_the_leak
         receiver(Vec3::new(0.3, 1.99, 0.0), Vec3::NEG_Y),
     ];
     let without = lit.irradiance(&hidden);
-    let with = lit.irradiance_visible(&hidden, &world, 128);
+    let with = lit.irradiance_visible(&hidden, &world.occluders(), 128);
     for ((r, e), leak) in hidden.iter().zip(&with).zip(&without) {
         assert_eq!(*e, [0.0; 3], "light reaches {} through the wall", r.position);
         assert!(leak[0] > 0.0, "without visibility the wall leaks at {}: {leak:?}", r.position);
@@ -189,7 +189,7 @@ fn with_nothing_in_the_way_visibility_changes_nothing() {
         receiver(Vec3::new(-1.5, 0.5, -0.99), Vec3::Z),
     ];
     let without = lit.irradiance(&receivers);
-    let with = lit.irradiance_visible(&receivers, &world, 128);
+    let with = lit.irradiance_visible(&receivers, &world.occluders(), 128);
     for ((r, a), b) in receivers.iter().zip(&with).zip(&without) {
         let rel = (a[0] - b[0]).abs() / b[0];
         assert!(b[0] > 0.0 && rel < 1e-4, "at {}: {a:?} with visibility, {b:?} without", r.position);
@@ -207,7 +207,7 @@ fn the_visible_bounce_matches_a_ray_per_sender_and_receiver() {
         receiver(Vec3::new(0.3, 1.99, -0.8), Vec3::NEG_Y),
         receiver(Vec3::new(0.35, -0.0, -0.9), Vec3::Y), // behind the block
     ];
-    let with = lit.irradiance_visible(&receivers, &world, 256);
+    let with = lit.irradiance_visible(&receivers, &world.occluders(), 256);
     // The same sum, a ray per pair (the near field by the point form too: every receiver here
     // is farther than the near radius from most of the light).
     let near = lit.near_radius() * lit.near_radius();
