@@ -3,15 +3,16 @@
 //! a tile, then the few tiles whose cut filled up walked again side by side (an indirect
 //! dispatch; both shaders/gi/cuts.wgsl), then the sum, one workgroup a tile
 //! (shaders/gi/gather.wgsl, entered by gather_subgroup.wgsl or gather_invocation.wgsl: see
-//! [`SumLanes`]). The cuts buffer is a graph resource (see [`cuts_desc`]); the
-//! retry list is this gather's own scratch. The three calls cover every tile at once, so their
-//! number never depends on the resolution: the indirect target is kept small enough
-//! ([`fit_cuts_budget`]) that every tile's cut fits the budget.
+//! [`SumLanes`]). With `gi.visibility` a fourth, before the sum, finds which lights each
+//! tile's corners see (shaders/gi/sight.wgsl). The cuts buffer is a graph resource (see
+//! [`cuts_desc`]); the retry list and the sight bits are this gather's own scratch. The calls
+//! cover every tile at once, so their number never depends on the resolution: the indirect
+//! target is kept small enough ([`fit_cuts_budget`]) that every tile's cut fits the budget.
 
 use engine::graph::BufferDesc;
 use engine::wgpu;
 
-use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
+use crate::bindings::{bind, compute_pipeline, compute_pipeline_with, layout, Resource as R, Slot as S};
 use crate::gpu_types::{GATHER_STATS_SIZE, RETRY_HEADER};
 use crate::quadtree::Quadtree;
 use crate::shader::module;
@@ -19,6 +20,7 @@ use crate::shader::module;
 pub const CUTS_SHADER: &str = include_str!("../../shaders/gi/cuts.wgsl");
 pub const GATHER_SUBGROUP_SHADER: &str = include_str!("../../shaders/gi/gather_subgroup.wgsl");
 pub const GATHER_INVOCATION_SHADER: &str = include_str!("../../shaders/gi/gather_invocation.wgsl");
+pub const SIGHT_SHADER: &str = include_str!("../../shaders/gi/sight.wgsl");
 
 /// How the sum's invocations load their lights.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -71,18 +73,23 @@ pub struct Gather {
     /// The indirect dispatch's arguments, written by the cuts pass (its group 2).
     retry_args_layout: wgpu::BindGroupLayout,
     retry_pipeline: wgpu::ComputePipeline,
+    sight_layout: wgpu::BindGroupLayout,
+    sight_pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
-    pipeline: wgpu::ComputePipeline,
-    /// The retry list, sized for the last layout's tiles.
-    retry: Option<(CutsLayout, RetryBuffers)>,
+    /// The sum without visibility and with it (the `VISIBILITY` override).
+    pipelines: [wgpu::ComputePipeline; 2],
+    /// The retry list and the sight bits, sized for the last layout's tiles.
+    scratch: Option<(CutsLayout, Scratch)>,
 }
 
-/// What the cuts' second walk needs besides the cuts.
-struct RetryBuffers {
+/// What the cuts' second walk and the sum need besides the cuts.
+struct Scratch {
     /// The tiles whose first walk filled the cut (a count, then a slot and a ratio each).
     retry: wgpu::Buffer,
     /// The workgroups of the retry dispatch, as its indirect arguments.
     retry_args: wgpu::Buffer,
+    /// One u32 a slot of the cuts: which of the tile's corners see the light there.
+    sight: wgpu::Buffer,
 }
 
 /// Receivers per tile side (`CUT_TILE` in gi_common.wgsl).
@@ -184,6 +191,14 @@ impl Gather {
             ],
         );
         let retry_args_layout = layout(device, "gi cuts retry arguments", &[storage(false)]);
+        let sight_layout = layout(
+            device,
+            "gi sight",
+            &[S::Uniform, S::Uniform, S::Texture, S::Texture, storage(true), storage(true), storage(false)],
+        );
+        let sight_module = module(device, "gi sight", SIGHT_SHADER);
+        let sight_pipeline =
+            compute_pipeline(device, "gi sight", &sight_module, "main", &[Some(globals), Some(&sight_layout)]);
         let layout = layout(
             device,
             "gi gather",
@@ -196,6 +211,7 @@ impl Gather {
                 storage(true),
                 S::Texture,
                 S::StorageTexture(wgpu::TextureFormat::Rgba32Float),
+                storage(true),
                 storage(true),
             ],
         );
@@ -219,12 +235,26 @@ impl Gather {
             SumLanes::Invocation => GATHER_INVOCATION_SHADER,
         };
         let module = module(device, "gi gather", source);
-        let pipeline = compute_pipeline(device, "gi gather", &module, "main", &[Some(globals), Some(&layout)]);
-        Self { cuts_layout, cuts_pipeline, retry_args_layout, retry_pipeline, layout, pipeline, retry: None }
+        let pipelines = [false, true].map(|visibility| {
+            let constants = [("VISIBILITY", f64::from(u8::from(visibility)))];
+            compute_pipeline_with(device, "gi gather", &module, "main", &[Some(globals), Some(&layout)], &constants)
+        });
+        Self {
+            cuts_layout,
+            cuts_pipeline,
+            retry_args_layout,
+            retry_pipeline,
+            sight_layout,
+            sight_pipeline,
+            layout,
+            pipelines,
+            scratch: None,
+        }
     }
 
-    /// Records the gather into `t` laid out as `layout` (as `t.cuts` was sized); returns the
-    /// number of dispatches, always three.
+    /// Records the gather into `t` laid out as `layout` (as `t.cuts` was sized), with light
+    /// stopped by the surfaces between where `visibility`; returns the number of dispatches:
+    /// three, four with visibility.
     pub fn record(
         &mut self,
         device: &wgpu::Device,
@@ -232,10 +262,11 @@ impl Gather {
         globals: &wgpu::BindGroup,
         layout: CutsLayout,
         t: &GatherTargets<'_>,
+        visibility: bool,
     ) -> u32 {
-        if self.retry.as_ref().is_none_or(|(l, _)| *l != layout) {
+        if self.scratch.as_ref().is_none_or(|(l, _)| *l != layout) {
             let tiles = u64::from(layout.tiles.0 * layout.tiles.1);
-            let buffers = RetryBuffers {
+            let buffers = Scratch {
                 retry: device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("gi cuts retry"),
                     size: RETRY_HEADER + 8 * tiles,
@@ -248,14 +279,20 @@ impl Gather {
                     usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
                 }),
+                sight: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("gi sight"),
+                    size: layout.bytes() / 4,
+                    usage: wgpu::BufferUsages::STORAGE,
+                    mapped_at_creation: false,
+                }),
             };
-            self.retry = Some((layout, buffers));
+            self.scratch = Some((layout, buffers));
         }
-        let (_, retry) = self.retry.as_ref().expect("sized above");
+        let (_, scratch) = self.scratch.as_ref().expect("sized above");
         encoder.clear_buffer(t.stats, 0, Some(GATHER_STATS_SIZE));
         // The cuts pass sets the arguments' y and z, and counts x up from 0.
-        encoder.clear_buffer(&retry.retry, 0, Some(RETRY_HEADER));
-        encoder.clear_buffer(&retry.retry_args, 0, None);
+        encoder.clear_buffer(&scratch.retry, 0, Some(RETRY_HEADER));
+        encoder.clear_buffer(&scratch.retry_args, 0, None);
         let cuts_group = bind(
             device,
             &self.cuts_layout,
@@ -268,11 +305,11 @@ impl Gather {
                 R::Buffer(t.cuts),
                 R::Buffer(t.stats),
                 R::Buffer(t.lights),
-                R::Buffer(&retry.retry),
+                R::Buffer(&scratch.retry),
                 R::Buffer(t.receivers),
             ],
         );
-        let retry_args = bind(device, &self.retry_args_layout, &[R::Buffer(&retry.retry_args)]);
+        let retry_args = bind(device, &self.retry_args_layout, &[R::Buffer(&scratch.retry_args)]);
         let group = bind(
             device,
             &self.layout,
@@ -286,6 +323,7 @@ impl Gather {
                 R::View(t.accumulate),
                 R::View(t.bounce),
                 R::Buffer(t.receivers),
+                R::Buffer(&scratch.sight),
             ],
         );
         let mut pass = encoder
@@ -297,11 +335,29 @@ impl Gather {
         pass.dispatch_workgroups((layout.tiles.0 * layout.tiles.1).div_ceil(CUTS_GROUP), 1, 1);
         pass.set_pipeline(&self.retry_pipeline);
         pass.set_bind_group(1, &cuts_group, &[]);
-        pass.dispatch_workgroups_indirect(&retry.retry_args, 0);
-        pass.set_pipeline(&self.pipeline);
+        pass.dispatch_workgroups_indirect(&scratch.retry_args, 0);
+        if visibility {
+            let sight = bind(
+                device,
+                &self.sight_layout,
+                &[
+                    R::Buffer(t.params),
+                    R::Buffer(t.levels),
+                    R::View(t.normal),
+                    R::View(t.position),
+                    R::Buffer(t.cuts),
+                    R::Buffer(t.receivers),
+                    R::Buffer(&scratch.sight),
+                ],
+            );
+            pass.set_pipeline(&self.sight_pipeline);
+            pass.set_bind_group(1, &sight, &[]);
+            pass.dispatch_workgroups(layout.tiles.0, layout.tiles.1, 1);
+        }
+        pass.set_pipeline(&self.pipelines[usize::from(visibility)]);
         pass.set_bind_group(1, &group, &[]);
         pass.dispatch_workgroups(layout.tiles.0, layout.tiles.1, 1);
-        3
+        3 + u32::from(visibility)
     }
 }
 

@@ -5,32 +5,80 @@
 /// the figure about the light's distribution rather than per-pixel noise. 0 is a perfect match;
 /// NaN when the reference is black.
 pub fn block_error(test: &image::Rgba32FImage, reference: &image::Rgba32FImage) -> f64 {
-    block_error_where(test, reference, |_, _| true)
+    block_error_where(test, reference, 8, |_, _| true)
+}
+
+/// [`block_error`] with blocks of `block`×`block` pixels.
+pub fn block_error_sized(test: &image::Rgba32FImage, reference: &image::Rgba32FImage, block: u32) -> f64 {
+    block_error_where(test, reference, block, |_, _| true)
+}
+
+/// Σ test / Σ reference − 1 over the three channels: how much light the test has too much.
+pub fn energy(test: &image::Rgba32FImage, reference: &image::Rgba32FImage) -> f64 {
+    let sum = |img: &image::Rgba32FImage| img.pixels().map(|p| p[0] as f64 + p[1] as f64 + p[2] as f64).sum::<f64>();
+    sum(test) / sum(reference) - 1.0
+}
+
+/// `image` shrunk by a whole `factor` each way, each pixel the mean of the `factor`² it covers
+/// (a frame compared with a reference computed at fewer receivers).
+pub fn shrink(image: &image::Rgba32FImage, factor: u32) -> image::Rgba32FImage {
+    let (w, h) = (image.width() / factor, image.height() / factor);
+    let n = (factor * factor) as f32;
+    image::Rgba32FImage::from_fn(w, h, |x, y| {
+        let mut sum = [0.0f32; 4];
+        for v in y * factor..(y + 1) * factor {
+            for u in x * factor..(x + 1) * factor {
+                for (s, c) in sum.iter_mut().zip(image.get_pixel(u, v).0) {
+                    *s += c;
+                }
+            }
+        }
+        image::Rgba(sum.map(|s| s / n))
+    })
 }
 
 /// [`block_error`] over the 8×8 blocks that lie wholly inside `mask` (one flag a pixel, row by
 /// row): a reference evaluated at some pixels only is compared where it was evaluated. NaN when
 /// no block is.
 pub fn block_error_masked(test: &image::Rgba32FImage, reference: &image::Rgba32FImage, mask: &[bool]) -> f64 {
+    block_error_masked_sized(test, reference, mask, 8)
+}
+
+/// [`block_error_masked`] with blocks of `block`×`block` pixels.
+pub fn block_error_masked_sized(
+    test: &image::Rgba32FImage,
+    reference: &image::Rgba32FImage,
+    mask: &[bool],
+    block: u32,
+) -> f64 {
     let (w, _) = reference.dimensions();
     assert_eq!(mask.len(), reference.pixels().len(), "one mask flag a pixel");
-    block_error_where(test, reference, |bx, by| block_inside(mask, w, 8, bx, by))
+    block_error_where(test, reference, block, |bx, by| block_inside(mask, w, block, bx, by))
+}
+
+/// [`energy`] over the pixels of `mask`.
+pub fn energy_masked(test: &image::Rgba32FImage, reference: &image::Rgba32FImage, mask: &[bool]) -> f64 {
+    let sum = |img: &image::Rgba32FImage| {
+        img.pixels().zip(mask).filter(|(_, &m)| m).map(|(p, _)| p[0] as f64 + p[1] as f64 + p[2] as f64).sum::<f64>()
+    };
+    sum(test) / sum(reference) - 1.0
 }
 
 fn block_error_where(
     test: &image::Rgba32FImage,
     reference: &image::Rgba32FImage,
+    block: u32,
     counts: impl Fn(u32, u32) -> bool,
 ) -> f64 {
     assert_eq!(test.dimensions(), reference.dimensions(), "block_error compares images of one size");
     let (w, h) = reference.dimensions();
     let (mut num, mut den) = (0.0f64, 0.0f64);
-    for by in 0..h / 8 {
-        for bx in (0..w / 8).filter(|&bx| counts(bx, by)) {
+    for by in 0..h / block {
+        for bx in (0..w / block).filter(|&bx| counts(bx, by)) {
             for c in 0..3 {
                 let (mut t, mut r) = (0.0f64, 0.0f64);
-                for y in by * 8..by * 8 + 8 {
-                    for x in bx * 8..bx * 8 + 8 {
+                for y in by * block..(by + 1) * block {
+                    for x in bx * block..(bx + 1) * block {
                         t += test.get_pixel(x, y)[c] as f64;
                         r += reference.get_pixel(x, y)[c] as f64;
                     }

@@ -42,6 +42,10 @@ declare::settings! {
         /// world points) and the rest its own gather: the gather's lights sit in screen space,
         /// so its small errors move with the view, and averaging holds them still. 0: none.
         history: f32 = 0.5, 0.0..=0.95, "share of the indirect light kept from earlier frames (0: none)";
+        /// Each reflection light's light reaches a receiver only where the segment between
+        /// them passes no surface the camera sees (a march through its depth): no light
+        /// through walls. 0 is the article's model, every light seen by every receiver.
+        visibility: u32 = 1, 0..=1, "the reflection lights' light is stopped by the surfaces between (no light through walls)";
     }
 }
 
@@ -68,7 +72,15 @@ impl GiSettings {
             let known: Vec<&str> = std::iter::once("enabled").chain(Self::FIELDS.iter().map(|f| f.name)).collect();
             return Err(format!("unknown setting 'gi.{name}' (known: {})", known.join(", ")));
         };
-        let v: f64 = value.trim().parse().map_err(|_| format!("gi.{name}: '{value}' is not a number"))?;
+        let switch = match value.trim() {
+            "on" | "true" if info.is_switch() => Some(1.0),
+            "off" | "false" if info.is_switch() => Some(0.0),
+            _ => None,
+        };
+        let v: f64 = match switch {
+            Some(v) => v,
+            None => value.trim().parse().map_err(|_| format!("gi.{name}: '{value}' is not a number"))?,
+        };
         if !v.is_finite() || v < info.min || v > info.max || (info.integer && v.fract() != 0.0) {
             let kind = if info.integer { "a whole number" } else { "a number" };
             return Err(format!("gi.{name}: {value} is out of range ({kind} from {} to {})", info.min, info.max));
@@ -102,6 +114,10 @@ impl GiSettings {
         for f in Self::FIELDS {
             let v = defaults.get(f.name).expect("every entry of FIELDS has a value");
             // As the setting's own type prints it: 0.15, not the f64 of an f32 (0.15000000596…).
+            if f.is_switch() {
+                table += &format!("| `gi.{}` | {} | on, off (1, 0) | {} |\n", f.name, on_off(v == 1.0), f.help);
+                continue;
+            }
             let default = if f.integer { (v as i64).to_string() } else { (v as f32).to_string() };
             table += &format!("| `gi.{}` | {default} | {} to {} | {} |\n", f.name, f.min, f.max, f.help);
         }
@@ -130,6 +146,22 @@ mod tests {
         assert!(s.set("bounces", "4").unwrap_err().contains("out of range"));
         assert!(s.set("split_ratio", "abc").unwrap_err().contains("not a number"));
         assert!(s.set("nope", "1").unwrap_err().contains("unknown setting 'gi.nope'"));
+    }
+
+    #[test]
+    fn a_switch_takes_on_and_off_and_nothing_else() {
+        let mut s = GiSettings::default();
+        assert_eq!(s.visibility, 1, "on by default");
+        s.set("visibility", "off").unwrap();
+        assert_eq!(s.visibility, 0);
+        s.set("visibility", "true").unwrap();
+        assert_eq!(s.visibility, 1);
+        s.set("visibility", "0").unwrap();
+        assert_eq!(s.visibility, 0);
+        assert!(s.set("visibility", "2").unwrap_err().contains("out of range"));
+        assert!(s.set("visibility", "maybe").unwrap_err().contains("not a number"));
+        // Only switches take words: a count does not.
+        assert!(s.set("bounces", "on").unwrap_err().contains("not a number"));
     }
 
     #[test]
@@ -167,9 +199,14 @@ mod tests {
             "interleave",
             "min_rows",
             "history",
+            "visibility",
         ];
         assert_eq!(names, order);
-        assert_eq!(GiSettings::FIELDS.iter().filter(|f| f.integer).count(), 3, "bounces, interleave, min_rows");
+        assert_eq!(
+            GiSettings::FIELDS.iter().filter(|f| f.integer).count(),
+            4,
+            "bounces, interleave, min_rows, visibility"
+        );
         // Compared as f32: an f32 setting holds the f64 bound to f32 precision.
         let get = |s: &GiSettings, name| s.get(name).map(|v| v as f32);
         for f in GiSettings::FIELDS {

@@ -45,8 +45,8 @@ fn figures(r: &mut GiRender, gpu: &engine::gpu::Gpu, view: &ViewState) -> Figure
 /// receivers (`true`). Other settings are measured with `headlamp bench --set gi.NAME=VALUE`,
 /// which prints the same error figure.
 fn settings() -> [(GiSettings, bool); 2] {
-    let full = GiSettings { resolution_scale: 1.0, ..GiSettings::default() };
-    [(GiSettings::default(), false), (full, true)]
+    let full = GiSettings { resolution_scale: 1.0, ..unoccluded() };
+    [(unoccluded(), false), (full, true)]
 }
 
 /// Measures one view against the limits of its settings (`full`: full-resolution receivers).

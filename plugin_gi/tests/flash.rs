@@ -7,7 +7,7 @@ mod common;
 use common::*;
 use engine::frame::Instance;
 use engine::glam::{Mat4, Vec3};
-use plugin_gi::{readback, GiSettings};
+use plugin_gi::readback;
 
 const SIZE: (u32, u32) = (80, 60);
 
@@ -21,7 +21,7 @@ fn total(img: &image::Rgba32FImage) -> f64 {
 #[test]
 fn the_flash_adds_to_the_lamp_in_the_indirect_light_and_the_reference() {
     let gpu = gpu();
-    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let mut r = renderer(&gpu, &cornell_box(), unoccluded());
     let plain = cornell_view(2.0);
     let mut flashed = plain.clone();
     flashed.camera_flash = [2.0; 3];
@@ -54,7 +54,7 @@ fn the_flash_adds_to_the_lamp_in_the_indirect_light_and_the_reference() {
 #[test]
 fn the_flash_alone_lights_indirectly_and_matches_the_reference() {
     let gpu = gpu();
-    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let mut r = renderer(&gpu, &cornell_box(), unoccluded());
     let mut view = cornell_view(4.0);
     view.headlamp.on = false;
     view.camera_flash = [1.0, 3.0, 2.0];
@@ -71,7 +71,7 @@ fn the_flash_alone_lights_indirectly_and_matches_the_reference() {
 #[test]
 fn with_the_lamp_put_down_the_flash_lights_directly_only() {
     let gpu = gpu();
-    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let mut r = renderer(&gpu, &cornell_box(), unoccluded());
     let mut view = cornell_view(4.0);
     view.headlamp.detach_at(&view.camera.clone());
     let mut flashed = view.clone();
@@ -93,7 +93,7 @@ fn with_the_lamp_put_down_the_flash_lights_directly_only() {
 #[test]
 fn an_instance_reflects_the_lamp_into_the_gi() {
     let gpu = gpu();
-    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let mut r = renderer(&gpu, &cornell_box(), unoccluded());
     let (vertices, indices) = engine::primitives::cuboid(Vec3::splat(0.3));
     let cube = r.renderer.add_mesh(&gpu, &vertices, &indices);
     let red = Instance {
@@ -126,7 +126,7 @@ fn an_instance_reflects_the_lamp_into_the_gi() {
 fn the_gi_works_at_half_render_scale() {
     const SIZE: (u32, u32) = (128, 96);
     let gpu = gpu();
-    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let mut r = renderer(&gpu, &cornell_box(), unoccluded());
     let view = cornell_view(4.0);
     let full = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
     let full_reference = render_linear(&gpu, &mut r, &view, "reference_screen", SIZE);

@@ -11,7 +11,7 @@ use plugin_gi::{names, readback, GiSettings};
 const SIZE: (u32, u32) = (128, 96);
 
 fn settings(split_ratio: f32, resolution_scale: f32) -> GiSettings {
-    GiSettings { split_ratio, resolution_scale, ..GiSettings::default() }
+    GiSettings { split_ratio, resolution_scale, ..unoccluded() }
 }
 
 /// Relative block error of the plugin's indirect light against the exact one bounce, and the
@@ -29,7 +29,7 @@ fn error_with(settings: GiSettings) -> (f64, f64) {
 
 #[test]
 fn indirect_matches_the_reference_and_improves_as_lights_split_finer() {
-    let (at_default, energy) = error_with(GiSettings::default());
+    let (at_default, energy) = error_with(unoccluded());
     println!("defaults: relative L2 error of 8×8 block means {at_default:.4}, energy {energy:+.4}");
     assert!(
         at_default <= ERROR_GOAL && energy.abs() <= ENERGY_GOAL,
@@ -291,7 +291,7 @@ fn the_disc_form_equals_the_integral_over_the_disc() {
 fn flux_and_reference_match_a_cpu_computation_of_the_formulas() {
     let size = (48u32, 36u32);
     let view = cornell_view(4.0);
-    let (texels, _) = check_reference_against_the_cpu(&view, size, GiSettings::default());
+    let (texels, _) = check_reference_against_the_cpu(&view, size, unoccluded());
     assert!(texels > (size.0 * size.1 / 2) as usize, "the box fills most of the view");
 }
 
@@ -306,7 +306,7 @@ fn the_reference_sums_every_sender_at_large_sizes() {
     view.camera =
         engine::camera::Camera::look_at(eye, Vec3::new(0.0, 1.0 + 8.0 * 20f32.to_radians().tan(), 0.0), FOV_Y);
     // Receivers at full resolution, so that the flux G-buffer is not subsampled either.
-    let settings = GiSettings { resolution_scale: 1.0, ..GiSettings::default() };
+    let settings = GiSettings { resolution_scale: 1.0, ..unoccluded() };
     let (_, beyond) = check_reference_against_the_cpu(&view, size, settings);
     assert!(beyond > 1000, "the test needs lit texels past the 65,535th, has {beyond}");
 }
@@ -360,7 +360,7 @@ fn check_reference_against_the_cpu(
 /// The plugin at its finest: lights split down to single texels wherever they are not tiny
 /// against their distance, receivers at full resolution, each evaluating every light.
 fn finest(bounces: u32) -> GiSettings {
-    GiSettings { split_ratio: 0.1, resolution_scale: 1.0, bounces, interleave: 1, ..GiSettings::default() }
+    GiSettings { split_ratio: 0.1, resolution_scale: 1.0, bounces, interleave: 1, ..unoccluded() }
 }
 
 /// Two bounces against a CPU computation: Φ₂ = ρ·E₁·A with A = Ω·d²/max(cos θ, 0.01).
@@ -403,7 +403,7 @@ fn more_bounces_add_less_and_less_light() {
     let view = cornell_view(4.0);
     let sums: Vec<f64> = (1..=3)
         .map(|bounces| {
-            let mut r = renderer(&gpu, &cornell_box(), GiSettings { bounces, ..GiSettings::default() });
+            let mut r = renderer(&gpu, &cornell_box(), GiSettings { bounces, ..unoccluded() });
             let img = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
             let stats = plugin_gi::GiStats::of(&r.renderer);
             println!("bounces {bounces}: {stats:?}");
@@ -427,7 +427,7 @@ fn project(view: &engine::frame::ViewState, x: Vec3, size: (u32, u32)) -> (u32, 
 #[test]
 fn colour_bleeds_from_the_coloured_walls_onto_the_white_floor() {
     let gpu = gpu();
-    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let mut r = renderer(&gpu, &cornell_box(), unoccluded());
     let view = cornell_view(4.0);
     let indirect = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
     let reference = render_linear(&gpu, &mut r, &view, "reference_screen", SIZE);
@@ -460,7 +460,7 @@ fn nothing_is_tinted_by_a_wall_the_lamp_does_not_see() {
     scene.meshes.retain(|m| m.material != 2); // no green wall
     let mut view = cornell_view(4.0);
     view.camera = engine::camera::Camera::look_at(Vec3::new(-0.6, 1.2, 0.0), Vec3::new(0.9, 0.2, 0.0), FOV_Y);
-    let mut r = renderer(&gpu, &scene, GiSettings::default());
+    let mut r = renderer(&gpu, &scene, unoccluded());
     let indirect = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
     let (red, green): (f64, f64) = indirect.pixels().fold((0.0, 0.0), |(r, g), p| (r + p[0] as f64, g + p[1] as f64));
     assert!(red > 0.0, "the lit white surfaces still light each other");
@@ -474,7 +474,7 @@ fn a_lamp_facing_the_void_lights_nothing_indirectly() {
     let gpu = gpu();
     let mut view = cornell_view(4.0);
     view.camera = engine::camera::Camera::look_at(Vec3::new(0.0, 1.0, 3.4), Vec3::new(0.0, 1.0, 6.0), FOV_Y);
-    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let mut r = renderer(&gpu, &cornell_box(), unoccluded());
     let indirect = render_linear(&gpu, &mut r, &view, "indirect", SIZE);
     assert!(indirect.pixels().all(|p| p[0] == 0.0 && p[1] == 0.0 && p[2] == 0.0));
     assert!(readback::lights(&gpu, &r.renderer).unwrap().is_empty(), "no flux, no lights");
@@ -498,7 +498,7 @@ fn a_strided_reference_evaluates_the_block_centres_exactly() {
     let gpu = gpu();
     let size = (72u32, 54u32);
     let view = cornell_view(4.0);
-    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let mut r = renderer(&gpu, &cornell_box(), unoccluded());
     let whole = render_linear(&gpu, &mut r, &view, "reference_screen", size);
     r.handle.set_reference_stride(3);
     let strided = render_linear(&gpu, &mut r, &view, "reference_screen", size);
@@ -528,7 +528,7 @@ fn a_strided_reference_evaluates_the_block_centres_exactly() {
 fn the_reference_converges_as_the_lamp_view_gets_finer() {
     let gpu = gpu();
     let base = (24u32, 18u32);
-    let mut r = renderer(&gpu, &cornell_box(), GiSettings::default());
+    let mut r = renderer(&gpu, &cornell_box(), unoccluded());
     let view = cornell_view(4.0);
     let pictures: Vec<image::Rgba32FImage> = [1, 3, 9]
         .iter()

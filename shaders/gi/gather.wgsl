@@ -32,6 +32,43 @@
 @group(1) @binding(7) var bounce_out: texture_storage_2d<rgba32float, write>;
 // Where each receiver is evaluated, as the cuts pass found it (receivers.wgsl).
 @group(1) @binding(8) var<storage, read> receiver_texels: array<u32>;
+// Which of the tile's corners see each light of its cut (sight.wgsl), read where VISIBILITY.
+@group(1) @binding(9) var<storage, read> sight: array<u32>;
+
+// Whether light is stopped by the surfaces between (gi.visibility): a pipeline each way, so
+// the way without reads nothing more.
+override VISIBILITY: bool = false;
+
+// Where this invocation's receiver lies among the nine receivers the sight pass tested: the
+// bits of the four around it, and their bilinear weights.
+var<private> sight_bits: vec4u;
+var<private> sight_mix: vec4f;
+
+// `sight_bits` and `sight_mix` for the receiver at tile position p (at x, normal n, where
+// `valid`): bilinear among the four tested receivers around it, of those on its surface only
+// where there are any (a receiver in a doorway's shadow takes nothing from the receivers
+// beyond the doorway's edge that see the light).
+fn place_in_sight(p: vec2i, x: vec3f, n: vec3f, valid: bool) {
+    let far = p >= vec2i(4);
+    let f = select(vec2f(p) / 4.0, (vec2f(p) - 4.0) / 3.0, far);
+    let i = u32(far.y) * 3u + u32(far.x);
+    sight_bits = vec4u(i, i + 1u, i + 3u, i + 4u);
+    let bilinear = vec4f((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+    sight_mix = bilinear;
+    if valid {
+        let d = length(x - globals.camera_pos.xyz);
+        var same = vec4f(0.0);
+        for (var k = 0u; k < 4u; k++) {
+            let at = vec2u(SIGHT_AT[sight_bits[k] % 3u], SIGHT_AT[sight_bits[k] / 3u]);
+            same[k] = select(0.0, 1.0, all(vec2i(at) == p) || same_surface(x, n, d, at.y * 8u + at.x));
+        }
+        let kept = bilinear * same;
+        let total = kept.x + kept.y + kept.z + kept.w;
+        if total > 0.0 {
+            sight_mix = kept / total;
+        }
+    }
+}
 
 // The tile's receivers: position, and the normal packed in w (NO_NORMAL where there is no
 // surface), so a neighbour is one load.
@@ -105,12 +142,31 @@ fn sequence_light(s: Sequence, k: u32, centre: vec3f) -> CutLight {
     return unpack_cut_light(cuts[u32(i32(s.first) + i32(k) * s.step)], centre);
 }
 
+// Which of the tile's corners see the k-th light of a sequence (all without VISIBILITY).
+fn sequence_sight(s: Sequence, k: u32) -> u32 {
+    if !VISIBILITY {
+        return 15u;
+    }
+    return sight[u32(i32(s.first) + i32(k) * s.step)];
+}
+
+// The share of a light's irradiance that reaches this invocation's receiver: the sight of it
+// of the four tested receivers around it (`bits`, sight.wgsl), bilinearly; 1 without
+// VISIBILITY.
+fn sight_weight(bits: u32) -> f32 {
+    if !VISIBILITY {
+        return 1.0;
+    }
+    let corner = vec4f((vec4u(bits) >> sight_bits) & vec4u(1u));
+    return dot(corner, sight_mix);
+}
+
 // Irradiance at x (normal n) from a sequence's lights, summed by this invocation alone.
 fn own_sequence_irradiance(s: Sequence, centre: vec3f, x: vec3f, n: vec3f) -> vec3f {
     var e = vec3f(0.0);
     for (var k = 0u; k < s.count; k++) {
         let l = sequence_light(s, k, centre);
-        e += disc_irradiance(l.flux, l.area, l.position, l.normal, x, n);
+        e += disc_irradiance(l.flux, l.area, l.position, l.normal, x, n) * sight_weight(sequence_sight(s, k));
     }
     return e;
 }
@@ -194,6 +250,9 @@ fn gather(r: u32, lanes: Lanes, group: vec2u) {
     }
     // (Its barrier also makes every receiver visible to its neighbours.)
     let counts = workgroupUniformLoad(&cut_size);
+    if VISIBILITY {
+        place_in_sight(p, x, n.xyz, valid);
+    }
     let lights = counts.x;
     let centre = bitcast<vec3f>(cuts[base + 1u].xyz);
     var e = vec3f(0.0);

@@ -18,24 +18,33 @@ fn sequence_irradiance(s: Sequence, centre: vec3f, x: vec3f, n: vec3f, lanes: La
         let k = k0 + lanes.lane;
         var l = sequence_light(s, min(k, s.count - 1u), centre);
         l.flux = select(vec3f(0.0), l.flux, k < s.count);
+        let bits = sequence_sight(s, min(k, s.count - 1u));
         // (subgroupBroadcast takes a constant lane.)
         e += disc_irradiance(subgroupBroadcast(l.flux, 0u), subgroupBroadcast(l.area, 0u),
-            subgroupBroadcast(l.position, 0u), subgroupBroadcast(l.normal, 0u), x, n);
+            subgroupBroadcast(l.position, 0u), subgroupBroadcast(l.normal, 0u), x, n)
+            * sight_weight(subgroupBroadcast(bits, 0u));
         e += disc_irradiance(subgroupBroadcast(l.flux, 1u), subgroupBroadcast(l.area, 1u),
-            subgroupBroadcast(l.position, 1u), subgroupBroadcast(l.normal, 1u), x, n);
+            subgroupBroadcast(l.position, 1u), subgroupBroadcast(l.normal, 1u), x, n)
+            * sight_weight(subgroupBroadcast(bits, 1u));
         e += disc_irradiance(subgroupBroadcast(l.flux, 2u), subgroupBroadcast(l.area, 2u),
-            subgroupBroadcast(l.position, 2u), subgroupBroadcast(l.normal, 2u), x, n);
+            subgroupBroadcast(l.position, 2u), subgroupBroadcast(l.normal, 2u), x, n)
+            * sight_weight(subgroupBroadcast(bits, 2u));
         e += disc_irradiance(subgroupBroadcast(l.flux, 3u), subgroupBroadcast(l.area, 3u),
-            subgroupBroadcast(l.position, 3u), subgroupBroadcast(l.normal, 3u), x, n);
+            subgroupBroadcast(l.position, 3u), subgroupBroadcast(l.normal, 3u), x, n)
+            * sight_weight(subgroupBroadcast(bits, 3u));
         if lanes.count == 8u {
             e += disc_irradiance(subgroupBroadcast(l.flux, 4u), subgroupBroadcast(l.area, 4u),
-                subgroupBroadcast(l.position, 4u), subgroupBroadcast(l.normal, 4u), x, n);
+                subgroupBroadcast(l.position, 4u), subgroupBroadcast(l.normal, 4u), x, n)
+            * sight_weight(subgroupBroadcast(bits, 4u));
             e += disc_irradiance(subgroupBroadcast(l.flux, 5u), subgroupBroadcast(l.area, 5u),
-                subgroupBroadcast(l.position, 5u), subgroupBroadcast(l.normal, 5u), x, n);
+                subgroupBroadcast(l.position, 5u), subgroupBroadcast(l.normal, 5u), x, n)
+            * sight_weight(subgroupBroadcast(bits, 5u));
             e += disc_irradiance(subgroupBroadcast(l.flux, 6u), subgroupBroadcast(l.area, 6u),
-                subgroupBroadcast(l.position, 6u), subgroupBroadcast(l.normal, 6u), x, n);
+                subgroupBroadcast(l.position, 6u), subgroupBroadcast(l.normal, 6u), x, n)
+            * sight_weight(subgroupBroadcast(bits, 6u));
             e += disc_irradiance(subgroupBroadcast(l.flux, 7u), subgroupBroadcast(l.area, 7u),
-                subgroupBroadcast(l.position, 7u), subgroupBroadcast(l.normal, 7u), x, n);
+                subgroupBroadcast(l.position, 7u), subgroupBroadcast(l.normal, 7u), x, n)
+            * sight_weight(subgroupBroadcast(bits, 7u));
         }
     }
     return e;

@@ -59,7 +59,8 @@ struct GiParams {
     // The parity of the whole cells the receivers' grid has stepped back (bit 0 across, bit 1
     // down), which the gather's interleave pattern follows (gather.wgsl's `light_class`).
     receiver_parity: u32,
-    pad: u32,
+    // 1: the gather tests each light's segment to its receiver for occlusion (visibility.wgsl).
+    visibility: u32,
     // The frame the lamp view was rendered from: origin, forward axis, and right and up axes
     // scaled by lamp_tan, so a texel's corner rays follow from its index.
     view_origin: vec4f,
@@ -77,6 +78,10 @@ const PYRAMID_LEVELS: u32 = 7u;
 // loads one vec4 a light, where an index into the pyramid and the node behind it took four
 // (a CPU device loads per lane).
 const CUT_TILE: u32 = 8u;
+
+// The receivers of a tile (per axis) whose sight of each light the sight pass tests
+// (sight.wgsl) and the sum blends (gather.wgsl): its corners and the middle between them.
+const SIGHT_AT = array<u32, 3>(0u, 4u, 7u);
 const CUT_MAX: u32 = 1536u;
 
 // What the gather needs of a light: where, how large, its flux, and its normal.

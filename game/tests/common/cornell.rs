@@ -43,3 +43,18 @@ pub fn view(eye: Vec3, target: Vec3) -> ViewState {
         HeadlampProfile { power: 10.0, fov_y: FOV_Y, color: [1.0; 3], distribution: IntensityDistribution::Uniform };
     ViewState { camera: Camera::look_at(eye, target, FOV_Y), headlamp: Headlamp::new(profile), ..ViewState::default() }
 }
+
+/// The Cornell-like box with a tall block instead of the low one: 0.5 × 0.5 m, 1.2 m high, five
+/// faces, standing left of the middle, so it hides parts of the walls and floor from each other.
+pub fn tall_block_box() -> Scene {
+    let mut s = cornell_box();
+    s.meshes.truncate(5);
+    let v = Vec3::new;
+    let (x0, x1, z0, z1, h) = (-0.55, -0.05, -0.6, -0.1, 1.2);
+    quad(&mut s, [v(x0, 0.0, z1), v(x1, 0.0, z1), v(x1, h, z1), v(x0, h, z1)], 0);
+    quad(&mut s, [v(x1, 0.0, z0), v(x0, 0.0, z0), v(x0, h, z0), v(x1, h, z0)], 0);
+    quad(&mut s, [v(x0, 0.0, z0), v(x0, 0.0, z1), v(x0, h, z1), v(x0, h, z0)], 0);
+    quad(&mut s, [v(x1, 0.0, z1), v(x1, 0.0, z0), v(x1, h, z0), v(x1, h, z1)], 0);
+    quad(&mut s, [v(x0, h, z1), v(x1, h, z1), v(x1, h, z0), v(x0, h, z0)], 0);
+    s
+}

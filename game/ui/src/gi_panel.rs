@@ -13,12 +13,19 @@ pub const HINT: &str = "F1: settings · Esc: release mouse";
 /// Fields whose range spans orders of magnitude get a logarithmic slider.
 const LOGARITHMIC: &[&str] = &["split_ratio"];
 
-/// The panel's contents: an on/off checkbox, a slider per numeric field (hover text: the
-/// field's help) and a reset button. Returns whether anything changed.
+/// The panel's contents: an on/off checkbox, a slider per numeric field or a checkbox per
+/// switch (hover text: the field's help) and a reset button. Returns whether anything changed.
 pub fn sliders(ui: &mut egui::Ui, s: &mut GiSettings) -> bool {
     let before = s.clone();
     ui.checkbox(&mut s.enabled, "enabled").on_hover_text(GiSettings::ENABLED_HELP);
     for field in GiSettings::FIELDS {
+        if field.is_switch() {
+            let mut on = slider_value(s, field, None) == 1.0;
+            if ui.checkbox(&mut on, field.name).on_hover_text(field.help).changed() {
+                slider_value(s, field, Some(f64::from(u8::from(on))));
+            }
+            continue;
+        }
         let slider = egui::Slider::from_get_set(field.min..=field.max, |v| slider_value(s, field, v))
             .text(field.name)
             .logarithmic(LOGARITHMIC.contains(&field.name));

@@ -134,7 +134,14 @@ impl RenderPass for BouncePass {
                 lights: ctx.buffer(&io.lights),
                 receivers: ctx.buffer(&io.receivers),
             };
-            dispatches += self.gather.record(device, ctx.encoder, ctx.frame.globals, io.layout, &targets);
+            dispatches += self.gather.record(
+                device,
+                ctx.encoder,
+                ctx.frame.globals,
+                io.layout,
+                &targets,
+                settings.visibility == 1,
+            );
         }
         ctx.count_dispatches(dispatches);
     }

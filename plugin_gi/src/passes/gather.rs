@@ -130,7 +130,14 @@ impl RenderPass for GatherPass {
             lights: ctx.buffer(&io.lights),
             receivers: ctx.buffer(&io.receivers),
         };
-        let dispatches = self.gather.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, io.layout, &targets);
+        let dispatches = self.gather.record(
+            &ctx.gpu.device,
+            ctx.encoder,
+            ctx.frame.globals,
+            io.layout,
+            &targets,
+            self.handle.settings().visibility == 1,
+        );
         ctx.count_dispatches(dispatches);
     }
 }

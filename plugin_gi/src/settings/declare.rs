@@ -15,6 +15,13 @@ pub struct FieldInfo {
     pub help: &'static str,
 }
 
+impl FieldInfo {
+    /// A whole number from 0 to 1: an on/off switch (a checkbox; `--set` takes on/off too).
+    pub fn is_switch(&self) -> bool {
+        self.integer && self.min == 0.0 && self.max == 1.0
+    }
+}
+
 /// A numeric setting's type as access by name sees it: every value travels as an f64 (the
 /// command line, sliders, config files and replays all share that), whole-number types round.
 pub(crate) trait Number: Copy {

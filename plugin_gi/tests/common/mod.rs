@@ -21,6 +21,13 @@ pub const ERROR_GOAL: f64 = 0.05;
 /// … and the bounced energy (Σ indirect / Σ exact − 1).
 pub const ENERGY_GOAL: f64 = 0.03;
 
+/// The article's transport, every light seen by every receiver (`gi.visibility` off): what
+/// the references these tests compare with (`reference_screen`, the CPU's sums) compute. The
+/// visibility-correct reference is the game's (`game/tests/gi_visibility.rs`).
+pub fn unoccluded() -> GiSettings {
+    GiSettings { visibility: 0, ..GiSettings::default() }
+}
+
 pub fn gpu() -> Gpu {
     Gpu::headless().unwrap_or_else(|e| panic!("{e}"))
 }

@@ -188,6 +188,8 @@ fn gi_setting(gi: &mut GiSettings, name: &str, value: &Value) -> Result<(), Stri
     let text = match (name, value) {
         ("enabled", Value::Boolean(b)) => b.to_string(),
         ("enabled", other) => return Err(format!("expected true or false, found {}", other.type_str())),
+        // A switch (`FieldInfo::is_switch`) takes true/false as well as 1/0.
+        (_, Value::Boolean(b)) if GiSettings::FIELDS.iter().any(|f| f.name == name && f.is_switch()) => b.to_string(),
         (_, Value::Integer(i)) => i.to_string(),
         (_, Value::Float(f)) => format!("{f:?}"),
         (_, other) if GiSettings::FIELDS.iter().any(|f| f.name == name) => {

@@ -46,6 +46,7 @@ fn changed() -> Config {
         interleave: 1,
         min_rows: 60,
         history: 0.25,
+        visibility: 0,
     };
     Config {
         mouse_sensitivity: 1.37,

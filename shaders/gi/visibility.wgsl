@@ -1,0 +1,43 @@
+// GI visibility: whether a reflection light's light reaches a receiver, by a march of the
+// segment between them through the depth the camera sees (the G-buffer's view depth). A point
+// of the segment that lies behind the surface the camera sees there, by more than a sliver
+// and less than VISIBILITY_THICKNESS, is inside that surface's solid: something stands
+// between. Points off the screen or behind the camera are taken as clear (the screen knows
+// nothing there). Included by the gather, which binds `gbuffer_position`.
+
+// At most this many points are tested along a segment, evenly spaced, the ends left out...
+const VISIBILITY_STEPS: u32 = 8u;
+// ...and about one every this many G-buffer texels of its length on the screen.
+const VISIBILITY_STEP_TEXELS: f32 = 8.0;
+// How deep behind a surface the camera sees a point still counts as inside it (metres):
+// thinner than a wall, thicker than the space behind a pillar would be a guess either way.
+const VISIBILITY_THICKNESS: f32 = 1.0;
+
+// Whether the segment between two points given in clip space (`globals.view_proj` of each:
+// the points of a segment are linear in clip space, so its ends are projected once) passes
+// no surface the camera sees.
+fn clip_segment_seen(a: vec4f, b: vec4f) -> bool {
+    let size = vec2f(textureDimensions(gbuffer_position));
+    var steps = VISIBILITY_STEPS;
+    if a.w > 0.0 && b.w > 0.0 {
+        let length = distance(a.xy / a.w, b.xy / b.w) * 0.5 * max(size.x, size.y);
+        steps = clamp(u32(ceil(length / VISIBILITY_STEP_TEXELS)), 1u, VISIBILITY_STEPS);
+    }
+    // A step's own change of depth can carry it that far behind a surface it crosses.
+    let thickness = max(VISIBILITY_THICKNESS, 2.0 * abs(b.w - a.w) / f32(steps));
+    for (var k = 0u; k < steps; k++) {
+        let clip = mix(a, b, (f32(k) + 0.5) / f32(steps));
+        let ndc = clip.xy / clip.w;
+        if clip.w <= 0.0 || any(abs(ndc) >= vec2f(1.0)) {
+            continue;
+        }
+        let texel = vec2i((ndc * vec2f(0.5, -0.5) + 0.5) * size);
+        let seen = textureLoad(gbuffer_position, texel, 0).w;
+        // (clip.w is the point's view depth.)
+        let behind = clip.w - seen;
+        if seen > 0.0 && behind > 0.02 * clip.w && behind < thickness {
+            return false;
+        }
+    }
+    return true;
+}
