@@ -6,9 +6,9 @@
 // nothing there). Included by the gather, which binds `gbuffer_position`.
 
 // At most this many points are tested along a segment, evenly spaced, the ends left out...
-const VISIBILITY_STEPS: u32 = 8u;
+const VISIBILITY_STEPS: u32 = 6u;
 // ...and about one every this many G-buffer texels of its length on the screen.
-const VISIBILITY_STEP_TEXELS: f32 = 8.0;
+const VISIBILITY_STEP_TEXELS: f32 = 12.0;
 // How deep behind a surface the camera sees a point still counts as inside it (metres):
 // thinner than a wall, thicker than the space behind a pillar would be a guess either way.
 const VISIBILITY_THICKNESS: f32 = 1.0;
