@@ -3,8 +3,8 @@
 //! a tile, then the few tiles whose cut filled up walked again side by side (an indirect
 //! dispatch; both shaders/gi/cuts.wgsl), then the sum, one workgroup a tile
 //! (shaders/gi/gather.wgsl, entered by gather_subgroup.wgsl or gather_invocation.wgsl: see
-//! [`SumLanes`]). With `gi.visibility` a fourth, before the sum, finds which lights each
-//! tile's corners see (shaders/gi/sight.wgsl). The cuts buffer is a graph resource (see
+//! [`SumLanes`]). With `gi.visibility` a fourth, before the sum, finds which lights nine of
+//! each tile's receivers see (shaders/gi/sight.wgsl). The cuts buffer is a graph resource (see
 //! [`cuts_desc`]); the retry list and the sight bits are this gather's own scratch. The calls
 //! cover every tile at once, so their number never depends on the resolution: the indirect
 //! target is kept small enough ([`fit_cuts_budget`]) that every tile's cut fits the budget.
@@ -88,7 +88,7 @@ struct Scratch {
     retry: wgpu::Buffer,
     /// The workgroups of the retry dispatch, as its indirect arguments.
     retry_args: wgpu::Buffer,
-    /// One u32 a slot of the cuts: which of the tile's corners see the light there.
+    /// One u32 a slot of the cuts: which of the tile's nine tested receivers see the light there.
     sight: wgpu::Buffer,
 }
 

@@ -50,8 +50,7 @@ engine::gpu_struct! {
         pub receiver_offset: [f32; 2],
         pub sender_offset: [f32; 2],
         pub receiver_parity: u32,
-        /// 1: the gather tests each light's segment to its receiver for occlusion.
-        pub visibility: u32,
+        pub pad: u32,
         /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin,
         /// its forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a
         /// texel's corner rays follow from its index: the reference's footprints in its near

@@ -32,7 +32,8 @@
 @group(1) @binding(7) var bounce_out: texture_storage_2d<rgba32float, write>;
 // Where each receiver is evaluated, as the cuts pass found it (receivers.wgsl).
 @group(1) @binding(8) var<storage, read> receiver_texels: array<u32>;
-// Which of the tile's corners see each light of its cut (sight.wgsl), read where VISIBILITY.
+// Which of the tile's nine tested receivers see each light of its cut (sight.wgsl), read
+// where VISIBILITY.
 @group(1) @binding(9) var<storage, read> sight: array<u32>;
 
 // Whether light is stopped by the surfaces between (gi.visibility): a pipeline each way, so
@@ -142,10 +143,11 @@ fn sequence_light(s: Sequence, k: u32, centre: vec3f) -> CutLight {
     return unpack_cut_light(cuts[u32(i32(s.first) + i32(k) * s.step)], centre);
 }
 
-// Which of the tile's corners see the k-th light of a sequence (all without VISIBILITY).
+// Which of the tile's nine tested receivers see the k-th light of a sequence (all without
+// VISIBILITY).
 fn sequence_sight(s: Sequence, k: u32) -> u32 {
     if !VISIBILITY {
-        return 15u;
+        return 511u;
     }
     return sight[u32(i32(s.first) + i32(k) * s.step)];
 }

@@ -3,7 +3,7 @@
 // of the segment that lies behind the surface the camera sees there, by more than a sliver
 // and less than VISIBILITY_THICKNESS, is inside that surface's solid: something stands
 // between. Points off the screen or behind the camera are taken as clear (the screen knows
-// nothing there). Included by the gather, which binds `gbuffer_position`.
+// nothing there). Included by the sight pass (sight.wgsl), which binds `gbuffer_position`.
 
 // At most this many points are tested along a segment, evenly spaced, the ends left out...
 const VISIBILITY_STEPS: u32 = 6u;

@@ -110,7 +110,7 @@ pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: u32) 
         receiver_offset: grids.receiver_offset,
         sender_offset: grids.sender_offset,
         receiver_parity: grids.receiver_parity,
-        visibility: settings.visibility,
+        pad: 0,
         view_origin: lamp.position.extend(1.0).to_array(),
         view_forward: (lamp.rotation * Vec3::NEG_Z).extend(0.0).to_array(),
         view_right: (lamp.rotation * Vec3::X * tan_y * lamp.aspect).extend(0.0).to_array(),
