@@ -243,10 +243,9 @@ fn gather(r: u32, lanes: Lanes, group: vec2u) {
     }
     let valid = in_view && n.w > 0.0;
     receivers[li] = vec4f(x, bitcast<f32>(select(NO_NORMAL, pack_normal(n.xyz), valid)));
-    let tiles = (params.indirect_size + CUT_TILE - 1u) / CUT_TILE;
-    let top_level = table.levels[PYRAMID_LEVELS - 1u];
-    let stride = cut_stride(top_level.y * top_level.z);
-    let base = (group.y * tiles.x + group.x) * stride;
+    let cut = tile_cut(group, params.indirect_size, table.levels[PYRAMID_LEVELS - 1u]);
+    let base = cut.x;
+    let stride = cut.y;
     if li == 0u {
         cut_size = cuts[base].xz;
     }

@@ -187,6 +187,14 @@ fn cut_stride(top_lights: u32) -> u32 {
     return 2u + 2u * max(CUT_MAX, top_lights);
 }
 
+// Where the cut of tile `tile` starts in `cuts`, and its vec4s (`cut_stride`), for an
+// indirect target of `indirect_size` over a pyramid whose top level is `top_level`.
+fn tile_cut(tile: vec2u, indirect_size: vec2u, top_level: vec4u) -> vec2u {
+    let tiles = (indirect_size + CUT_TILE - 1u) / CUT_TILE;
+    let stride = cut_stride(top_level.y * top_level.z);
+    return vec2u((tile.y * tiles.x + tile.x) * stride, stride);
+}
+
 // Where the k-th light of the near list of the cut at `base` (of `stride` vec4s) is stored.
 fn near_slot(base: u32, stride: u32, k: u32) -> u32 {
     return base + stride - 1u - k;

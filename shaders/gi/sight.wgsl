@@ -19,45 +19,48 @@
 
 #include "visibility.wgsl"
 
-// The corners among them (bits of `points_seeing`), and the points between them.
-const CORNERS: u32 = 0x145u;
+// The corners among them (point i = x + 3y, bit i of `points_seeing`), and the points
+// between them.
 const CORNER_POINTS = array<u32, 4>(0u, 2u, 6u, 8u);
+const CORNERS: u32 = 0x145u;
+const BETWEEN_POINTS = array<u32, 5>(1u, 3u, 4u, 5u, 7u);
 const BETWEEN: u32 = 0x0bau;
 
 // Those receivers in clip space (`globals.view_proj`), w 0 where there is no surface.
 var<workgroup> points: array<vec4f, 9>;
 
-// Which of the points see the light at p (bit i for point i = x + 3y): the corners first,
-// the others only where the corners disagree (where they agree, a surface between would be
-// narrower than the tile: the others take their answer). A point without a surface sees it where another point does (or
-// where none has a surface).
+// Point i's answer for a light at `light` (clip space): its bit where it sees it (x) and
+// where it has a surface to be asked (y).
+fn point_sees(i: u32, light: vec4f) -> vec2u {
+    let c = points[i];
+    if c.w <= 0.0 {
+        return vec2u(0u);
+    }
+    return vec2u(u32(clip_segment_seen(c, light)), 1u) << vec2u(i);
+}
+
+// Which of the points see the light at p (bit i for point i): the corners first, the others
+// only where the corners disagree (where they agree, a surface between would be narrower
+// than the tile: the others take their answer). A point without a surface sees it where
+// another point does (or where none has a surface).
 fn points_seeing(p: vec3f) -> u32 {
     let light = globals.view_proj * vec4f(p, 1.0);
-    var seen = 0u;
-    var valid = 0u;
+    var answer = vec2u(0u);
     for (var k = 0u; k < 4u; k++) {
-        let i = CORNER_POINTS[k];
-        let c = points[i];
-        if c.w > 0.0 {
-            valid |= 1u << i;
-            seen |= u32(clip_segment_seen(c, light)) << i;
-        }
+        answer |= point_sees(CORNER_POINTS[k], light);
     }
+    var seen = answer.x;
+    var valid = answer.y;
     let corners = seen & valid & CORNERS;
     if corners == 0u || corners == (valid & CORNERS) {
         valid |= BETWEEN;
         seen |= select(0u, BETWEEN, corners != 0u);
     } else {
-        for (var i = 1u; i < 9u; i++) {
-            if (CORNERS & (1u << i)) != 0u {
-                continue;
-            }
-            let c = points[i];
-            if c.w > 0.0 {
-                valid |= 1u << i;
-                seen |= u32(clip_segment_seen(c, light)) << i;
-            }
+        for (var k = 0u; k < 5u; k++) {
+            answer |= point_sees(BETWEEN_POINTS[k], light);
         }
+        seen = answer.x;
+        valid = answer.y;
     }
     let others = select(0u, 511u, seen != 0u || valid == 0u);
     return seen | (others & ~valid & 511u);
@@ -74,10 +77,9 @@ fn main(@builtin(local_invocation_index) i: u32, @builtin(workgroup_id) group: v
         points[i] = select(vec4f(0.0), clip, valid);
     }
     workgroupBarrier();
-    let tiles = (params.indirect_size + CUT_TILE - 1u) / CUT_TILE;
-    let top_level = table.levels[PYRAMID_LEVELS - 1u];
-    let stride = cut_stride(top_level.y * top_level.z);
-    let base = (group.y * tiles.x + group.x) * stride;
+    let cut = tile_cut(group.xy, params.indirect_size, table.levels[PYRAMID_LEVELS - 1u]);
+    let base = cut.x;
+    let stride = cut.y;
     let counts = cuts[base].xz;
     let centre = bitcast<vec3f>(cuts[base + 1u].xyz);
     for (var k = i; k < counts.x; k += 64u) {
