@@ -15,8 +15,7 @@ pub fn block_error_sized(test: &image::Rgba32FImage, reference: &image::Rgba32FI
 
 /// Σ test / Σ reference − 1 over the three channels: how much light the test has too much.
 pub fn energy(test: &image::Rgba32FImage, reference: &image::Rgba32FImage) -> f64 {
-    let sum = |img: &image::Rgba32FImage| img.pixels().map(|p| p[0] as f64 + p[1] as f64 + p[2] as f64).sum::<f64>();
-    sum(test) / sum(reference) - 1.0
+    energy_where(test, reference, |_| true)
 }
 
 /// `image` shrunk by a whole `factor` each way, each pixel the mean of the `factor`² it covers
@@ -58,8 +57,18 @@ pub fn block_error_masked_sized(
 
 /// [`energy`] over the pixels of `mask`.
 pub fn energy_masked(test: &image::Rgba32FImage, reference: &image::Rgba32FImage, mask: &[bool]) -> f64 {
+    assert_eq!(mask.len(), reference.pixels().len(), "one mask flag a pixel");
+    energy_where(test, reference, |i| mask[i])
+}
+
+/// [`energy`] over the pixels (row by row) that `counts` keeps.
+fn energy_where(test: &image::Rgba32FImage, reference: &image::Rgba32FImage, counts: impl Fn(usize) -> bool) -> f64 {
     let sum = |img: &image::Rgba32FImage| {
-        img.pixels().zip(mask).filter(|(_, &m)| m).map(|(p, _)| p[0] as f64 + p[1] as f64 + p[2] as f64).sum::<f64>()
+        img.pixels()
+            .enumerate()
+            .filter(|(i, _)| counts(*i))
+            .map(|(_, p)| p[0] as f64 + p[1] as f64 + p[2] as f64)
+            .sum::<f64>()
     };
     sum(test) / sum(reference) - 1.0
 }
