@@ -3,8 +3,9 @@
 //! a tile, then the few tiles whose cut filled up walked again side by side (an indirect
 //! dispatch; both shaders/gi/cuts.wgsl), then the sum, one workgroup a tile
 //! (shaders/gi/gather.wgsl, entered by gather_subgroup.wgsl or gather_invocation.wgsl: see
-//! [`SumLanes`]). With `gi.visibility` a fourth, before the sum, finds which lights nine of
-//! each tile's receivers see (shaders/gi/sight.wgsl). The cuts buffer is a graph resource (see
+//! [`SumLanes`]). With `gi.visibility` two more before the sum: the view depth at half the
+//! G-buffer's size (shaders/gi/sight_depth.wgsl), then which lights nine of each tile's
+//! receivers see, marched through it (shaders/gi/sight.wgsl). The cuts buffer is a graph resource (see
 //! [`cuts_desc`]); the retry list and the sight bits are this gather's own scratch. The calls
 //! cover every tile at once, so their number never depends on the resolution: the indirect
 //! target is kept small enough ([`fit_cuts_budget`]) that every tile's cut fits the budget.
@@ -21,6 +22,7 @@ pub const CUTS_SHADER: &str = include_str!("../../shaders/gi/cuts.wgsl");
 pub const GATHER_SUBGROUP_SHADER: &str = include_str!("../../shaders/gi/gather_subgroup.wgsl");
 pub const GATHER_INVOCATION_SHADER: &str = include_str!("../../shaders/gi/gather_invocation.wgsl");
 pub const SIGHT_SHADER: &str = include_str!("../../shaders/gi/sight.wgsl");
+pub const SIGHT_DEPTH_SHADER: &str = include_str!("../../shaders/gi/sight_depth.wgsl");
 
 /// How the sum's invocations load their lights.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -65,6 +67,8 @@ pub struct GatherTargets<'a> {
     /// Where each receiver is evaluated ([`receivers_desc`]): the cuts pass finds it, the sum
     /// reads it.
     pub receivers: &'a wgpu::Buffer,
+    /// The G-buffer's size.
+    pub gbuffer_size: (u32, u32),
 }
 
 pub struct Gather {
@@ -75,11 +79,16 @@ pub struct Gather {
     retry_pipeline: wgpu::ComputePipeline,
     sight_layout: wgpu::BindGroupLayout,
     sight_pipeline: wgpu::ComputePipeline,
+    depth_layout: wgpu::BindGroupLayout,
+    depth_pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     /// The sum without visibility and with it (the `VISIBILITY` override).
     pipelines: [wgpu::ComputePipeline; 2],
     /// The retry list and the sight bits, sized for the last layout's tiles.
     scratch: Option<(CutsLayout, Scratch)>,
+    /// The view depth the sight pass marches (R32Float, half the G-buffer's size each way:
+    /// shaders/gi/sight_depth.wgsl), made when visibility is first asked for at a size.
+    sight_depth: Option<((u32, u32), wgpu::TextureView)>,
 }
 
 /// What the cuts' second walk and the sum need besides the cuts.
@@ -90,6 +99,11 @@ struct Scratch {
     retry_args: wgpu::Buffer,
     /// One u32 a slot of the cuts: which of the tile's nine tested receivers see the light there.
     sight: wgpu::Buffer,
+}
+
+/// The sight depth's size for a G-buffer of `gbuffer` texels: half each way, rounded up.
+pub fn sight_depth_size(gbuffer: (u32, u32)) -> (u32, u32) {
+    (gbuffer.0.div_ceil(2), gbuffer.1.div_ceil(2))
 }
 
 /// Receivers per tile side (`CUT_TILE` in gi_common.wgsl).
@@ -194,11 +208,16 @@ impl Gather {
         let sight_layout = layout(
             device,
             "gi sight",
-            &[S::Uniform, S::Uniform, S::Texture, S::Texture, storage(true), storage(true), storage(false)],
+            &[S::Uniform, S::Uniform, S::Texture, S::Texture, storage(true), storage(true), storage(false), S::Texture],
         );
         let sight_module = module(device, "gi sight", SIGHT_SHADER);
         let sight_pipeline =
             compute_pipeline(device, "gi sight", &sight_module, "main", &[Some(globals), Some(&sight_layout)]);
+        let depth_layout =
+            layout(device, "gi sight depth", &[S::Texture, S::StorageTexture(wgpu::TextureFormat::R32Float)]);
+        let depth_module = module(device, "gi sight depth", SIGHT_DEPTH_SHADER);
+        let depth_pipeline =
+            compute_pipeline(device, "gi sight depth", &depth_module, "main", &[Some(globals), Some(&depth_layout)]);
         let layout = layout(
             device,
             "gi gather",
@@ -246,15 +265,37 @@ impl Gather {
             retry_pipeline,
             sight_layout,
             sight_pipeline,
+            depth_layout,
+            depth_pipeline,
             layout,
             pipelines,
             scratch: None,
+            sight_depth: None,
         }
+    }
+
+    /// Makes the sight depth for a G-buffer of `gbuffer` texels, unless it is there.
+    fn size_sight_depth(&mut self, device: &wgpu::Device, gbuffer: (u32, u32)) {
+        let size = sight_depth_size(gbuffer);
+        if self.sight_depth.as_ref().is_some_and(|(s, _)| *s == size) {
+            return;
+        }
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("gi sight depth"),
+            size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R32Float,
+            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        self.sight_depth = Some((size, texture.create_view(&Default::default())));
     }
 
     /// Records the gather into `t` laid out as `layout` (as `t.cuts` was sized), with light
     /// stopped by the surfaces between where `visibility`; returns the number of dispatches:
-    /// three, four with visibility.
+    /// three, five with visibility.
     pub fn record(
         &mut self,
         device: &wgpu::Device,
@@ -287,6 +328,9 @@ impl Gather {
                 }),
             };
             self.scratch = Some((layout, buffers));
+        }
+        if visibility {
+            self.size_sight_depth(device, t.gbuffer_size);
         }
         let (_, scratch) = self.scratch.as_ref().expect("sized above");
         encoder.clear_buffer(t.stats, 0, Some(GATHER_STATS_SIZE));
@@ -337,6 +381,11 @@ impl Gather {
         pass.set_bind_group(1, &cuts_group, &[]);
         pass.dispatch_workgroups_indirect(&scratch.retry_args, 0);
         if visibility {
+            let (size, depth) = self.sight_depth.as_ref().expect("made above");
+            let depth_group = bind(device, &self.depth_layout, &[R::View(t.position), R::View(depth)]);
+            pass.set_pipeline(&self.depth_pipeline);
+            pass.set_bind_group(1, &depth_group, &[]);
+            pass.dispatch_workgroups(size.0.div_ceil(8), size.1.div_ceil(8), 1);
             let sight = bind(
                 device,
                 &self.sight_layout,
@@ -348,6 +397,7 @@ impl Gather {
                     R::Buffer(t.cuts),
                     R::Buffer(t.receivers),
                     R::Buffer(&scratch.sight),
+                    R::View(depth),
                 ],
             );
             pass.set_pipeline(&self.sight_pipeline);
@@ -357,7 +407,7 @@ impl Gather {
         pass.set_pipeline(&self.pipelines[usize::from(visibility)]);
         pass.set_bind_group(1, &group, &[]);
         pass.dispatch_workgroups(layout.tiles.0, layout.tiles.1, 1);
-        3 + u32::from(visibility)
+        3 + 2 * u32::from(visibility)
     }
 }
 

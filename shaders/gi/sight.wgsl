@@ -16,6 +16,8 @@
 @group(1) @binding(5) var<storage, read> receiver_texels: array<u32>;
 // One u32 a slot of `cuts`: which of the nine receivers see the light there (`points_seeing`).
 @group(1) @binding(6) var<storage, read_write> sight: array<u32>;
+// The view depth to march, at half the G-buffer's size (sight_depth.wgsl).
+@group(1) @binding(7) var sight_depth: texture_2d<f32>;
 
 #include "visibility.wgsl"
 

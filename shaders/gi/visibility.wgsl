@@ -1,14 +1,15 @@
 // GI visibility: whether a reflection light's light reaches a receiver, by a march of the
-// segment between them through the depth the camera sees (the G-buffer's view depth). A point
-// of the segment that lies behind the surface the camera sees there, by more than a sliver
-// and less than VISIBILITY_THICKNESS, is inside that surface's solid: something stands
-// between. Points off the screen or behind the camera are taken as clear (the screen knows
-// nothing there). Included by the sight pass (sight.wgsl), which binds `gbuffer_position`.
+// segment between them through the depth the camera sees (the G-buffer's view depth, at half
+// its resolution: sight_depth.wgsl). A point of the segment that lies behind the surface the
+// camera sees there, by more than a sliver and less than VISIBILITY_THICKNESS, is inside that
+// surface's solid: something stands between. Points off the screen or behind the camera are taken as clear (the screen knows
+// nothing there). Included by the sight pass (sight.wgsl), which binds `sight_depth`.
 
 // At most this many points are tested along a segment, evenly spaced, the ends left out...
 const VISIBILITY_STEPS: u32 = 6u;
-// ...and about one every this many G-buffer texels of its length on the screen.
-const VISIBILITY_STEP_TEXELS: f32 = 12.0;
+// ...and about one every this many texels of the sight depth (twice as many of the G-buffer)
+// of its length on the screen.
+const VISIBILITY_STEP_TEXELS: f32 = 6.0;
 // How deep behind a surface the camera sees a point still counts as inside it (metres):
 // thinner than a wall, thicker than the space behind a pillar would be a guess either way.
 const VISIBILITY_THICKNESS: f32 = 1.0;
@@ -17,7 +18,7 @@ const VISIBILITY_THICKNESS: f32 = 1.0;
 // the points of a segment are linear in clip space, so its ends are projected once) passes
 // no surface the camera sees.
 fn clip_segment_seen(a: vec4f, b: vec4f) -> bool {
-    let size = vec2f(textureDimensions(gbuffer_position));
+    let size = vec2f(textureDimensions(sight_depth));
     var steps = VISIBILITY_STEPS;
     if a.w > 0.0 && b.w > 0.0 {
         let length = distance(a.xy / a.w, b.xy / b.w) * 0.5 * max(size.x, size.y);
@@ -32,7 +33,7 @@ fn clip_segment_seen(a: vec4f, b: vec4f) -> bool {
             continue;
         }
         let texel = vec2i((ndc * vec2f(0.5, -0.5) + 0.5) * size);
-        let seen = textureLoad(gbuffer_position, texel, 0).w;
+        let seen = textureLoad(sight_depth, texel, 0).x;
         // (clip.w is the point's view depth.)
         let behind = clip.w - seen;
         if seen > 0.0 && behind > 0.02 * clip.w && behind < thickness {

@@ -38,6 +38,7 @@ pub struct BounceIo {
     receivers: Write<Buffer>,
     irradiance: Write<Image>,
     layout: CutsLayout,
+    gbuffer_size: (u32, u32),
     flux_size: (u32, u32),
     indirect_size: (u32, u32),
 }
@@ -88,6 +89,7 @@ impl RenderPass for BouncePass {
             layout: cuts_layout(low, flux),
             flux_size: flux,
             indirect_size: low,
+            gbuffer_size: d.size(),
         })
     }
 
@@ -133,6 +135,7 @@ impl RenderPass for BouncePass {
                 stats: ctx.buffer(&io.stats),
                 lights: ctx.buffer(&io.lights),
                 receivers: ctx.buffer(&io.receivers),
+                gbuffer_size: io.gbuffer_size,
             };
             dispatches += self.gather.record(
                 device,

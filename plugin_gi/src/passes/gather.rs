@@ -31,6 +31,7 @@ pub struct GatherIo {
     lights: Write<Buffer>,
     receivers: Write<Buffer>,
     layout: CutsLayout,
+    gbuffer_size: (u32, u32),
 }
 
 /// The irradiance format: f32 storage, summed by the gather itself (no blending).
@@ -112,6 +113,7 @@ impl RenderPass for GatherPass {
             lights: d.create(gi.lights, lights_desc()),
             receivers: d.create(gi.receivers, receivers_desc(size)),
             layout,
+            gbuffer_size: d.size(),
         }
     }
 
@@ -129,6 +131,7 @@ impl RenderPass for GatherPass {
             stats: ctx.buffer(&io.stats),
             lights: ctx.buffer(&io.lights),
             receivers: ctx.buffer(&io.receivers),
+            gbuffer_size: io.gbuffer_size,
         };
         let dispatches = self.gather.record(
             &ctx.gpu.device,

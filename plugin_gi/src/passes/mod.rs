@@ -28,6 +28,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("gi/gather_subgroup.wgsl", crate::gather::GATHER_SUBGROUP_SHADER),
     ("gi/gather_invocation.wgsl", crate::gather::GATHER_INVOCATION_SHADER),
     ("gi/sight.wgsl", crate::gather::SIGHT_SHADER),
+    ("gi/sight_depth.wgsl", crate::gather::SIGHT_DEPTH_SHADER),
     ("gi/indirect.wgsl", indirect::SHADER),
     ("gi/lights_view.wgsl", lights_view::SHADER),
     ("gi/reference.wgsl", reference::SHADER),
