@@ -73,6 +73,9 @@ pub struct ReferenceFigures {
     pub patch_size_m: f32,
     /// Every `every`-th flicker block across and down is evaluated.
     pub every: u32,
+    /// Whether each sender–receiver pair is tested for what stands between them: so when the
+    /// GI is (`gi.visibility`), so that its shadows are measured and not counted as error.
+    pub visibility: bool,
     /// Pixels evaluated per frame (those blocks' pixels), and how many of them had a surface.
     pub pixels: usize,
     pub receivers_per_frame: Vec<usize>,
@@ -134,7 +137,11 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
     let (plugins, handle) = crate::plugins(on);
     let mut renderer = Renderer::new(gpu, &level.scene, plugins)?;
     renderer.set_view("indirect").map_err(|e| anyhow!(e))?;
+    let visibility = handle.settings().visibility == 1;
     let mut reference = WorldReference::new(gpu, &level.scene)?;
+    if visibility {
+        reference = reference.with_visibility();
+    }
     if let Some(dir) = &args.out_dir {
         std::fs::create_dir_all(dir).with_context(|| format!("--out-dir {}", dir.display()))?;
     }
@@ -219,6 +226,7 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
         reference: ReferenceFigures {
             patch_size_m: patch,
             every,
+            visibility,
             pixels: mask.iter().filter(|&&m| m).count(),
             receivers_per_frame,
             lit_patches_per_frame: lit,
@@ -282,9 +290,10 @@ pub fn table(r: &PanReport) -> String {
     };
     let _ = writeln!(
         s,
-        "reference: world-fixed patches of at most {} cm, {blocks} ({} pixels); median {:.0} lit patches, \
+        "reference: world-fixed patches of at most {} cm, {}, {blocks} ({} pixels); median {:.0} lit patches, \
          {:.2} s a frame (worst {:.2} s; finding the lit patches {:.2} s)",
         100.0 * f.patch_size_m,
+        if f.visibility { "each pair tested for what stands between (as gi.visibility)" } else { "no visibility" },
         f.pixels,
         median_lit,
         median_s,
