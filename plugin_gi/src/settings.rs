@@ -36,7 +36,7 @@ declare::settings! {
         /// was tried: its wider reconstruction cost more than it saved, and the error grew.)
         interleave: u32 = 2, 1..=2, "2: neighbours share the evaluation of lights (faster); 1: each does all";
         /// Fewer only when the view has fewer: the light's variation across a room needs about
-        /// this many. Lower is faster and blurrier; the CPU preset uses 72.
+        /// this many. Lower is faster and blurrier; the CPU preset uses 84.
         min_rows: u32 = 90, 16..=360, "fewest rows of the indirect target, whatever the scale";
         /// Each frame's indirect light is this much last frames' (reprojected to the same
         /// world points) and the rest its own gather: the gather's lights sit in screen space,
@@ -99,9 +99,11 @@ impl GiSettings {
     /// What a CPU device (Mesa's lavapipe) gets by default: fewer rows of receivers, so that
     /// the Cellar plays at 15 fps or more with the GI on (with the game's CPU render scale and
     /// dynamic resolution), and still as many as hold its flicker under 1 % and its error
-    /// under 5 % (72: 0.84 % and 4.1 %; 45: 1.19 % and 5.4 %, docs/benchmarks.md).
+    /// under 5 % (72: 0.84 % and 4.1 %; 45: 1.19 % and 5.4 %, docs/benchmarks.md), and with
+    /// visibility within 8 % of the visibility-correct reference (84; 72 gave 10.3 % in the
+    /// red/green room, where the light's steep rise into the ceiling's crease needs them).
     pub fn cpu_preset() -> Self {
-        Self { min_rows: 72, ..Self::default() }
+        Self { min_rows: 84, ..Self::default() }
     }
 
     /// The table of settings in `docs/gi.md` (a test holds the file to it): name, default,
