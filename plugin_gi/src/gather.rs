@@ -5,10 +5,11 @@
 //! (shaders/gi/gather.wgsl, entered by gather_subgroup.wgsl or gather_invocation.wgsl: see
 //! [`SumLanes`]). With `gi.visibility` two more before the sum: the view depth at half the
 //! G-buffer's size (shaders/gi/sight_depth.wgsl), then which lights nine of each tile's
-//! receivers see, marched through it (shaders/gi/sight.wgsl). The cuts buffer is a graph resource (see
-//! [`cuts_desc`]); the retry list and the sight bits are this gather's own scratch. The calls
-//! cover every tile at once, so their number never depends on the resolution: the indirect
-//! target is kept small enough ([`fit_cuts_budget`]) that every tile's cut fits the budget.
+//! receivers see, marched through it (shaders/gi/sight.wgsl). The cuts buffer is a graph
+//! resource (see [`cuts_desc`]); the retry list, the sight bits and the sight depth are this
+//! gather's own scratch. The calls cover every tile at once, so their number never depends
+//! on the resolution: the indirect target is kept small enough ([`fit_cuts_budget`]) that
+//! every tile's cut fits the budget.
 
 use engine::graph::BufferDesc;
 use engine::wgpu;
@@ -102,7 +103,7 @@ struct Scratch {
 }
 
 /// The sight depth's size for a G-buffer of `gbuffer` texels: half each way, rounded up.
-pub fn sight_depth_size(gbuffer: (u32, u32)) -> (u32, u32) {
+fn sight_depth_size(gbuffer: (u32, u32)) -> (u32, u32) {
     (gbuffer.0.div_ceil(2), gbuffer.1.div_ceil(2))
 }
 

@@ -75,7 +75,7 @@ pub struct ErrorFigure {
     /// The world reference's longest patch edge (metres).
     pub patch_size_m: f32,
     /// Relative L2 error of 8×8 block means of `indirect` against the world-fixed reference
-    /// (linear radiance).
+    /// (linear radiance; the reference without visibility, whatever `gi.visibility` says).
     pub relative_l2_block8: f64,
 }
 
@@ -360,5 +360,13 @@ pub fn table(r: &Report) -> String {
         e.size[1],
         e.frame
     );
+    if r.gi.visibility == 1 {
+        // Evaluated with visibility the reference costs minutes a frame: `bench --pan` has it.
+        let _ = writeln!(
+            s,
+            "  (that reference has no visibility, so with gi.visibility on the GI's correct shadows count as error \
+             here; bench --pan compares with the visibility-correct one)"
+        );
+    }
     s
 }
