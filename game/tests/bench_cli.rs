@@ -98,6 +98,10 @@ fn bench_pan_measures_against_the_world_reference_and_its_convergence() {
         "2",
         "--lamp",
         "0,1.6,3.8:0,1,-4",
+        // The reference without visibility, as the GI: four times cheaper, and the one
+        // `--converge` is about (the visibility-correct one is tested below).
+        "--set",
+        "gi.visibility=off",
         "--out-dir",
         dir.to_str().unwrap(),
         "--json",
@@ -107,7 +111,7 @@ fn bench_pan_measures_against_the_world_reference_and_its_convergence() {
     assert!(out.status.success(), "bench --pan failed: {}\n{stdout}", String::from_utf8_lossy(&out.stderr));
     println!("{stdout}");
     for needle in [
-        "reference: world-fixed patches of at most 8 cm, on every 2nd 8x8 flicker block across and down",
+        "reference: world-fixed patches of at most 8 cm, no visibility, on every 2nd 8x8 flicker block across and down",
         "| figure (8x8-block means) |",
         "the reference vs its 4 cm patches (8x8 blocks)",
         "the reference's own flicker against its 4 cm patches",
@@ -128,6 +132,7 @@ fn bench_pan_measures_against_the_world_reference_and_its_convergence() {
     assert!(stdout.contains("walking forward 2 cm a frame") && stdout.contains("lamp set down at 0.00,1.60,3.80"));
     let reference = &report["reference"];
     assert_eq!(reference["every"], 2);
+    assert_eq!(reference["visibility"], false);
     assert_eq!(reference["pixels"], 20 * 6 * 64, "every other block of 40x12, across and down");
     for key in ["receivers_per_frame", "lit_patches_per_frame", "patch_seconds_per_frame", "sum_seconds_per_frame"] {
         let per_frame = reference[key].as_array().unwrap_or_else(|| panic!("reference.{key}: {reference}"));
@@ -153,6 +158,31 @@ fn bench_pan_measures_against_the_world_reference_and_its_convergence() {
     assert_eq!((frame.width(), frame.height()), (320, 96));
     assert!(frame.enumerate_pixels().all(|(x, y, p)| ((x / 8) % 2 == 0 && (y / 8) % 2 == 0) || p.0 == [0.0; 3]));
     assert!(frame.pixels().any(|p| p[0] > 0.0));
+}
+
+#[test]
+fn bench_pan_with_visibility_measures_against_the_visibility_correct_reference() {
+    // With gi.visibility on (the default) the GI's shadows are right, so the reference must
+    // have them too, or they would count as error and their motion as flicker.
+    let dir = scratch("pan_visibility");
+    let json = dir.join("out.json");
+    let level = cellar();
+    let args = ["--pan", "--size", "160x48", "--frames", "2", "--patch-size", "0.08", "--reference-every", "2"];
+    let out =
+        headlamp(&[&["bench", "--level", level.as_str()][..], &args, &["--json", json.to_str().unwrap()]].concat());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "bench --pan failed: {}\n{stdout}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        stdout.contains("reference: world-fixed patches of at most 8 cm, each pair tested for what stands between"),
+        "the report says which reference: {stdout}"
+    );
+    // Flicker blocks of 4 pixels (1/40 of 160): the error takes blocks that fit inside them.
+    assert!(stdout.contains("error vs reference (4x4 blocks)"), "{stdout}");
+    let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(report["reference"]["visibility"], true);
+    let errors = report["error_per_frame"].as_array().unwrap();
+    assert_eq!(errors.len(), 2);
+    assert!(errors.iter().all(|e| e.as_f64().is_some_and(|e| (0.0..1.0).contains(&e))), "{errors:?}");
 }
 
 #[test]

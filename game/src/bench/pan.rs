@@ -60,7 +60,8 @@ pub struct PanReport {
     pub reference_change: f64,
     /// The GI's change per frame, the same way.
     pub indirect_change: f64,
-    /// Per frame: relative L2 error of 8×8-block means against the reference (as `bench`).
+    /// Per frame: relative L2 error of 8×8-block means against the reference (as `bench`),
+    /// of smaller blocks where the flicker blocks are ([`error_block`]).
     pub error_per_frame: Vec<f64>,
     /// With `--converge`: the reference against one with patches of half the size.
     pub converge: Option<ConvergeReport>,
@@ -104,6 +105,13 @@ pub struct ConvergeReport {
 /// The flicker figure's block side for a frame `width` pixels wide.
 pub fn flicker_block(width: u32) -> u32 {
     (width / FLICKER_BLOCKS_ACROSS).max(1)
+}
+
+/// The error's block side with flicker blocks of `flicker_block` pixels: 8, as `bench`'s, or
+/// the flicker block's where that is smaller (frames under 320 pixels wide), so that whole
+/// blocks lie inside the flicker blocks the reference is evaluated on.
+pub fn error_block(flicker_block: u32) -> u32 {
+    flicker_block.min(8)
 }
 
 /// Every how many flicker blocks the reference is evaluated, unless told: every block of a
@@ -186,13 +194,13 @@ pub fn pan(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings
             if let Some(dir) = &args.out_dir {
                 save(&fine.image, &dir.join(format!("reference_half_{t:03}.exr")))?;
             }
-            half_errors.push(metrics::block_error_masked(&exact.image, &fine.image, &mask));
+            half_errors.push(metrics::block_error_masked_sized(&exact.image, &fine.image, &mask, error_block(block)));
             halves.push(metrics::block_means_masked(&fine.image, block, &mask));
             half_lit.push(fine.lit_patches);
             half_seconds.0.push(fine.patch_seconds);
             half_seconds.1.push(fine.sum_seconds);
         }
-        errors.push(metrics::block_error_masked(&indirect, &exact.image, &mask));
+        errors.push(metrics::block_error_masked_sized(&indirect, &exact.image, &mask, error_block(block)));
         tests.push(metrics::block_means_masked(&indirect, block, &mask));
         references.push(metrics::block_means_masked(&exact.image, block, &mask));
         receivers_per_frame.push(exact.receivers);
@@ -284,6 +292,7 @@ pub fn table(r: &PanReport) -> String {
     let (median_s, worst_s) = median_and_worst(&frame_seconds(&f.patch_seconds_per_frame, &f.sum_seconds_per_frame));
     let (median_patches, _) = median_and_worst(&f.patch_seconds_per_frame);
     let b = r.flicker_block;
+    let e = error_block(b);
     let blocks = match f.every {
         1 => format!("on every {b}x{b} flicker block"),
         k => format!("on every {} {b}x{b} flicker block across and down", ordinal(k)),
@@ -309,7 +318,7 @@ pub fn table(r: &PanReport) -> String {
     let (median, worst) = median_and_worst(&r.error_per_frame);
     let _ = writeln!(
         s,
-        "| error vs reference (8x8 blocks), median / worst frame | {:.2} % / {:.2} % |",
+        "| error vs reference ({e}x{e} blocks), median / worst frame | {:.2} % / {:.2} % |",
         100.0 * median,
         100.0 * worst
     );
@@ -318,7 +327,7 @@ pub fn table(r: &PanReport) -> String {
         let (median, worst) = median_and_worst(&c.error_per_frame);
         let _ = writeln!(
             s,
-            "| the reference vs its {cm} cm patches (8x8 blocks), median / worst frame | {:.2} % / {:.2} % |",
+            "| the reference vs its {cm} cm patches ({e}x{e} blocks), median / worst frame | {:.2} % / {:.2} % |",
             100.0 * median,
             100.0 * worst
         );
