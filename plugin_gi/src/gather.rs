@@ -5,13 +5,14 @@
 //! (shaders/gi/gather.wgsl, entered by gather_subgroup.wgsl or gather_invocation.wgsl: see
 //! [`SumLanes`]). With `gi.visibility` two more before the sum: the view depth at half the
 //! G-buffer's size (shaders/gi/sight_depth.wgsl), then which lights nine of each tile's
-//! receivers see, marched through it (shaders/gi/sight.wgsl). The cuts buffer is a graph
-//! resource (see [`cuts_desc`]); the retry list, the sight bits and the sight depth are this
-//! gather's own scratch. The calls cover every tile at once, so their number never depends
+//! receivers see, marched through it (shaders/gi/sight.wgsl). The cuts buffer and the sight
+//! depth are graph resources (see [`cuts_desc`], [`sight_depth_desc`]: the first bounce's
+//! gather makes the depth once a frame, further bounces march the same); the retry list and
+//! the sight bits are this gather's own scratch. The calls cover every tile at once, so their number never depends
 //! on the resolution: the indirect target is kept small enough ([`fit_cuts_budget`]) that
 //! every tile's cut fits the budget.
 
-use engine::graph::BufferDesc;
+use engine::graph::{BufferDesc, TextureDesc};
 use engine::wgpu;
 
 use crate::bindings::{bind, compute_pipeline, compute_pipeline_with, layout, Resource as R, Slot as S};
@@ -68,8 +69,9 @@ pub struct GatherTargets<'a> {
     /// Where each receiver is evaluated ([`receivers_desc`]): the cuts pass finds it, the sum
     /// reads it.
     pub receivers: &'a wgpu::Buffer,
-    /// The G-buffer's size.
-    pub gbuffer_size: (u32, u32),
+    /// With visibility: the view depth to march ([`sight_depth_desc`], made by
+    /// [`Gather::record_sight_depth`]); `None` without.
+    pub sight_depth: Option<&'a wgpu::TextureView>,
 }
 
 pub struct Gather {
@@ -87,9 +89,6 @@ pub struct Gather {
     pipelines: [wgpu::ComputePipeline; 2],
     /// The retry list and the sight bits, sized for the last layout's tiles.
     scratch: Option<(CutsLayout, Scratch)>,
-    /// The view depth the sight pass marches (R32Float, half the G-buffer's size each way:
-    /// shaders/gi/sight_depth.wgsl), made when visibility is first asked for at a size.
-    sight_depth: Option<((u32, u32), wgpu::TextureView)>,
 }
 
 /// What the cuts' second walk and the sum need besides the cuts.
@@ -102,9 +101,12 @@ struct Scratch {
     sight: wgpu::Buffer,
 }
 
-/// The sight depth's size for a G-buffer of `gbuffer` texels: half each way, rounded up.
-fn sight_depth_size(gbuffer: (u32, u32)) -> (u32, u32) {
-    (gbuffer.0.div_ceil(2), gbuffer.1.div_ceil(2))
+/// The view depth the sight pass marches, for a G-buffer of `gbuffer` texels: R32Float, half
+/// its size each way, rounded up (shaders/gi/sight_depth.wgsl).
+pub fn sight_depth_desc(gbuffer: (u32, u32)) -> TextureDesc {
+    let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+    TextureDesc { usage, ..TextureDesc::target(wgpu::TextureFormat::R32Float) }
+        .fixed(gbuffer.0.div_ceil(2), gbuffer.1.div_ceil(2))
 }
 
 /// Receivers per tile side (`CUT_TILE` in gi_common.wgsl).
@@ -271,32 +273,33 @@ impl Gather {
             layout,
             pipelines,
             scratch: None,
-            sight_depth: None,
         }
     }
 
-    /// Makes the sight depth for a G-buffer of `gbuffer` texels, unless it is there.
-    fn size_sight_depth(&mut self, device: &wgpu::Device, gbuffer: (u32, u32)) {
-        let size = sight_depth_size(gbuffer);
-        if self.sight_depth.as_ref().is_some_and(|(s, _)| *s == size) {
-            return;
-        }
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("gi sight depth"),
-            size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::R32Float,
-            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        });
-        self.sight_depth = Some((size, texture.create_view(&Default::default())));
+    /// Records the sight depth (`depth`, [`sight_depth_desc`] of `size`) from the G-buffer's
+    /// `position`; returns the number of dispatches, one.
+    pub fn record_sight_depth(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        globals: &wgpu::BindGroup,
+        position: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        size: (u32, u32),
+    ) -> u32 {
+        let group = bind(device, &self.depth_layout, &[R::View(position), R::View(depth)]);
+        let mut pass = encoder
+            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi sight depth"), timestamp_writes: None });
+        pass.set_bind_group(0, globals, &[]);
+        pass.set_pipeline(&self.depth_pipeline);
+        pass.set_bind_group(1, &group, &[]);
+        pass.dispatch_workgroups(size.0.div_ceil(8), size.1.div_ceil(8), 1);
+        1
     }
 
     /// Records the gather into `t` laid out as `layout` (as `t.cuts` was sized), with light
-    /// stopped by the surfaces between where `visibility`; returns the number of dispatches:
-    /// three, five with visibility.
+    /// stopped by the surfaces between where `t.sight_depth` is given; returns the number of
+    /// dispatches: three, four with visibility.
     pub fn record(
         &mut self,
         device: &wgpu::Device,
@@ -304,7 +307,6 @@ impl Gather {
         globals: &wgpu::BindGroup,
         layout: CutsLayout,
         t: &GatherTargets<'_>,
-        visibility: bool,
     ) -> u32 {
         if self.scratch.as_ref().is_none_or(|(l, _)| *l != layout) {
             let tiles = u64::from(layout.tiles.0 * layout.tiles.1);
@@ -329,9 +331,6 @@ impl Gather {
                 }),
             };
             self.scratch = Some((layout, buffers));
-        }
-        if visibility {
-            self.size_sight_depth(device, t.gbuffer_size);
         }
         let (_, scratch) = self.scratch.as_ref().expect("sized above");
         encoder.clear_buffer(t.stats, 0, Some(GATHER_STATS_SIZE));
@@ -381,12 +380,7 @@ impl Gather {
         pass.set_pipeline(&self.retry_pipeline);
         pass.set_bind_group(1, &cuts_group, &[]);
         pass.dispatch_workgroups_indirect(&scratch.retry_args, 0);
-        if visibility {
-            let (size, depth) = self.sight_depth.as_ref().expect("made above");
-            let depth_group = bind(device, &self.depth_layout, &[R::View(t.position), R::View(depth)]);
-            pass.set_pipeline(&self.depth_pipeline);
-            pass.set_bind_group(1, &depth_group, &[]);
-            pass.dispatch_workgroups(size.0.div_ceil(8), size.1.div_ceil(8), 1);
+        if let Some(depth) = t.sight_depth {
             let sight = bind(
                 device,
                 &self.sight_layout,
@@ -405,10 +399,11 @@ impl Gather {
             pass.set_bind_group(1, &sight, &[]);
             pass.dispatch_workgroups(layout.tiles.0, layout.tiles.1, 1);
         }
+        let visibility = t.sight_depth.is_some();
         pass.set_pipeline(&self.pipelines[usize::from(visibility)]);
         pass.set_bind_group(1, &group, &[]);
         pass.dispatch_workgroups(layout.tiles.0, layout.tiles.1, 1);
-        3 + 2 * u32::from(visibility)
+        3 + u32::from(visibility)
     }
 }
 

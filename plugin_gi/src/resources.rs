@@ -22,6 +22,9 @@ pub(crate) struct GiResources {
     /// The G-buffer texel each receiver of the indirect target is evaluated on, one u32 each
     /// (x | y << 16), found by the cuts pass for the gather and temporal passes.
     pub receivers: Handle<Buffer>,
+    /// With `gi.visibility`: the view depth the sight pass marches, at half the G-buffer's
+    /// size (crate::gather::sight_depth_desc), made by `gi_gather` for every bounce.
+    pub sight_depth: Handle<Image>,
     /// The irradiance blended over frames (`gi_temporal`), which the composite upsamples.
     pub history: History<Image>,
     pub stats: Handle<Buffer>,
@@ -69,6 +72,7 @@ impl GiResources {
             cuts: ctx.persistent_buffer("gi.cuts"),
             irradiance: ctx.image(names::IRRADIANCE),
             receivers: ctx.buffer("gi.receivers"),
+            sight_depth: ctx.image("gi.sight_depth"),
             history: ctx.history_image(names::IRRADIANCE_HISTORY),
             stats: ctx.buffer(names::STATS),
             lights: ctx.buffer(names::LIGHTS),

@@ -37,8 +37,9 @@ pub struct BounceIo {
     cuts: Write<Buffer>,
     receivers: Write<Buffer>,
     irradiance: Write<Image>,
+    /// With visibility: the view depth the first bounce's gather made.
+    sight_depth: Option<Read<Image>>,
     layout: CutsLayout,
-    gbuffer_size: (u32, u32),
     flux_size: (u32, u32),
     indirect_size: (u32, u32),
 }
@@ -89,7 +90,7 @@ impl RenderPass for BouncePass {
             layout: cuts_layout(low, flux),
             flux_size: flux,
             indirect_size: low,
-            gbuffer_size: d.size(),
+            sight_depth: (s.visibility == 1).then(|| d.read(self.gi.sight_depth)),
         })
     }
 
@@ -135,16 +136,9 @@ impl RenderPass for BouncePass {
                 stats: ctx.buffer(&io.stats),
                 lights: ctx.buffer(&io.lights),
                 receivers: ctx.buffer(&io.receivers),
-                gbuffer_size: io.gbuffer_size,
+                sight_depth: io.sight_depth.as_ref().map(|h| ctx.view(h)),
             };
-            dispatches += self.gather.record(
-                device,
-                ctx.encoder,
-                ctx.frame.globals,
-                io.layout,
-                &targets,
-                settings.visibility == 1,
-            );
+            dispatches += self.gather.record(device, ctx.encoder, ctx.frame.globals, io.layout, &targets);
         }
         ctx.count_dispatches(dispatches);
     }

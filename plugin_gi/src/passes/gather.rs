@@ -5,7 +5,9 @@ use engine::passes::CoreResources;
 use engine::wgpu;
 
 use super::params::{fixed, flux_size, indirect_size};
-use crate::gather::{cuts_desc, cuts_layout, receivers_desc, CutsLayout, Gather, GatherTargets, SumLanes};
+use crate::gather::{
+    cuts_desc, cuts_layout, receivers_desc, sight_depth_desc, CutsLayout, Gather, GatherTargets, SumLanes,
+};
 use crate::gpu_types::{CENTRE_LIGHTS, GATHER_STATS_SIZE};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
@@ -30,8 +32,9 @@ pub struct GatherIo {
     stats: Write<Buffer>,
     lights: Write<Buffer>,
     receivers: Write<Buffer>,
+    /// With visibility: the view depth the sight pass marches, made here for every bounce.
+    sight_depth: Option<Write<Image>>,
     layout: CutsLayout,
-    gbuffer_size: (u32, u32),
 }
 
 /// The irradiance format: f32 storage, summed by the gather itself (no blending).
@@ -112,12 +115,24 @@ impl RenderPass for GatherPass {
             stats: d.create(gi.stats, stats_desc()),
             lights: d.create(gi.lights, lights_desc()),
             receivers: d.create(gi.receivers, receivers_desc(size)),
+            sight_depth: (settings.visibility == 1).then(|| d.create(gi.sight_depth, sight_depth_desc(d.size()))),
             layout,
-            gbuffer_size: d.size(),
         }
     }
 
     fn run(&mut self, io: &GatherIo, ctx: &mut PassContext<'_>) {
+        let mut dispatches = 0;
+        if let Some(depth) = &io.sight_depth {
+            let size = ctx.texture(depth).size();
+            dispatches += self.gather.record_sight_depth(
+                &ctx.gpu.device,
+                ctx.encoder,
+                ctx.frame.globals,
+                ctx.view(&io.position),
+                ctx.view(depth),
+                (size.width, size.height),
+            );
+        }
         let targets = GatherTargets {
             params: ctx.buffer(&io.params),
             levels: ctx.buffer(&io.levels),
@@ -131,16 +146,9 @@ impl RenderPass for GatherPass {
             stats: ctx.buffer(&io.stats),
             lights: ctx.buffer(&io.lights),
             receivers: ctx.buffer(&io.receivers),
-            gbuffer_size: io.gbuffer_size,
+            sight_depth: io.sight_depth.as_ref().map(|h| ctx.view(h)),
         };
-        let dispatches = self.gather.record(
-            &ctx.gpu.device,
-            ctx.encoder,
-            ctx.frame.globals,
-            io.layout,
-            &targets,
-            self.handle.settings().visibility == 1,
-        );
+        dispatches += self.gather.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, io.layout, &targets);
         ctx.count_dispatches(dispatches);
     }
 }
