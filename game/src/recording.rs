@@ -23,7 +23,8 @@ pub fn header(level: &Level, level_path: &Path, tick_rate: u32, seed: u64, gi: &
     let mut settings = vec![("gi.enabled".to_owned(), gi.enabled.to_string())];
     for f in GiSettings::FIELDS {
         let value = gi.get(f.name).expect("every listed field has a value");
-        settings.push((format!("gi.{}", f.name), value.to_string()));
+        let text = f.choice_name(value).map_or_else(|| value.to_string(), str::to_owned);
+        settings.push((format!("gi.{}", f.name), text));
     }
     ReplayHeader {
         level_id: level_id(level, level_path),

@@ -11,6 +11,8 @@ pub enum Slot {
     },
     /// A float texture read with `textureLoad`.
     Texture,
+    /// A `texture_2d<u32>` read with `textureLoad`.
+    UintTexture,
     StorageTexture(wgpu::TextureFormat),
 }
 
@@ -31,6 +33,11 @@ pub fn layout(device: &wgpu::Device, label: &str, slots: &[Slot]) -> wgpu::BindG
                 Slot::Storage { read_only } => buffer(wgpu::BufferBindingType::Storage { read_only }),
                 Slot::Texture => wgpu::BindingType::Texture {
                     sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                Slot::UintTexture => wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Uint,
                     view_dimension: wgpu::TextureViewDimension::D2,
                     multisampled: false,
                 },

@@ -50,7 +50,8 @@ engine::gpu_struct! {
         pub receiver_offset: [f32; 2],
         pub sender_offset: [f32; 2],
         pub receiver_parity: u32,
-        pub pad: u32,
+        /// The article method's interleaved sampling: its lights dealt over N×N sub-images.
+        pub article_interleave: u32,
         /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin,
         /// its forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a
         /// texel's corner rays follow from its index: the reference's footprints in its near
@@ -163,6 +164,11 @@ pub fn twins() -> Vec<Layout> {
 /// The structs in the GI's shaders that have no Rust twin, and why. The sizes the CPU needs of
 /// some of them are constants below, which the layout test checks.
 pub const GPU_ONLY: &[(&str, &str)] = &[
+    ("VolumeLight", "the article's instance stream, written and read by the GPU only"),
+    ("DrawArgs", "written by the GPU, read as wgpu's DrawIndirectArgs"),
+    ("Place", "a function's value, never in a buffer"),
+    ("Receiver", "a function's value, never in a buffer"),
+    ("VolumeOut", "stage IO between vertex and fragment shaders"),
     ("Node", "the pyramid's nodes are written and read by the GPU only (NODE_SIZE sizes them)"),
     ("RetryList", "written and read by the GPU only (the CPU clears RETRY_HEADER)"),
     ("DispatchArgs", "written by the GPU, read as wgpu's DispatchIndirectArgs"),

@@ -8,9 +8,11 @@
 //! depends on the engine's public API only and registers everything in [`GiPlugin::build`].
 
 mod bindings;
+pub mod distribution_table;
 mod gather;
 pub mod gpu_types;
 mod grids;
+mod light_volumes;
 pub mod metrics;
 mod passes;
 mod pyramid;
@@ -28,7 +30,7 @@ use engine::plugin::{Plugin, PluginContext};
 pub use gather::SumLanes;
 pub use gpu_types::{names, ReflectionLight};
 pub use passes::SHADERS;
-pub use settings::{FieldInfo, GiSettings, RETIRED};
+pub use settings::{FieldInfo, GiSettings, Method, RETIRED};
 pub use shader::INCLUDES as SHADER_INCLUDES;
 pub use shared::{GiHandle, GiStats};
 
@@ -63,6 +65,8 @@ impl Plugin for GiPlugin {
         ctx.add_pass(Stage::Indirect, passes::FluxPass::new(device, globals, handle.clone(), core, gi));
         let lanes = gather::SumLanes::for_device(ctx.gpu);
         ctx.add_pass(Stage::Indirect, passes::GatherPass::new(device, globals, handle.clone(), core, gi, lanes));
+        // `gi.method = article`: the same irradiance by the article's light volumes instead.
+        ctx.add_pass(Stage::Indirect, passes::ArticlePass::new(ctx.gpu, globals, handle.clone(), core, gi));
         let probe = passes::ViewModelIrradiancePass::new(device, globals, handle.clone(), gi, irradiance);
         ctx.add_pass(Stage::Indirect, probe);
         ctx.add_pass(Stage::Indirect, passes::BouncePass::new(device, globals, handle.clone(), core, gi, lanes));

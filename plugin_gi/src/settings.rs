@@ -46,12 +46,53 @@ declare::settings! {
         /// them passes no surface the camera sees (a march through its depth): no light
         /// through walls. 0 is the article's model, every light seen by every receiver.
         visibility: u32 = 1, 0..=1, "the reflection lights' light is stopped by the surfaces between (no light through walls)";
+        /// The article's own pipeline beside ours, to run and to measure against (docs/gi.md,
+        /// "The article's method"): its distribution table, instance stream and light volumes.
+        method: Method = Method::Cuts, 0..=1, "cuts: each tile gathers its own cut of the pyramid; article: the distribution table's lights drawn as light volumes";
+        /// The article's light budget: the slots the distribution table takes from the
+        /// pyramid (an incoherent slot is drawn as up to 16 finer lights).
+        light_budget: u32 = 1024, 64..=4096, "article method: reflection lights the distribution table takes from the pyramid";
+        /// Interleaved sampling (Segovia et al. 2006): the lights are dealt into N×N subsets,
+        /// each drawn into its own sub-image of every N-th receiver, so a light shades 1/N² of
+        /// them; the sub-images are then put back together, each receiver summing the subsets
+        /// from its neighbours on its surface.
+        article_interleave: u32 = 4, 1..=4, "article method: lights dealt over N×N sub-images, each light shading 1/N² of the receivers";
+    }
+}
+
+/// How the first bounce is gathered (`gi.method`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Each 8×8 tile of receivers takes its own cut through the pyramid and sums it.
+    #[default]
+    Cuts,
+    /// The article's pipeline: the distribution table's slots of the pyramid become an
+    /// instance stream on the GPU, drawn as light volumes, deferred and additive.
+    Article,
+}
+
+impl declare::Number for Method {
+    const INTEGER: bool = true;
+    const CHOICES: &'static [&'static str] = &["cuts", "article"];
+    fn to_f64(self) -> f64 {
+        match self {
+            Method::Cuts => 0.0,
+            Method::Article => 1.0,
+        }
+    }
+    fn from_f64(v: f64) -> Self {
+        if v.round() >= 1.0 {
+            Method::Article
+        } else {
+            Method::Cuts
+        }
     }
 }
 
 /// Settings of the light-volume GI (before the pyramid gather) that older replays and config
 /// files still name: accepted and ignored.
-pub const RETIRED: &[&str] = &["light_budget", "cutoff", "d_min"];
+pub const RETIRED: &[&str] = &["cutoff", "d_min"];
 
 impl GiSettings {
     /// Sets a field from text, as `--set gi.NAME=VALUE` does; the error says what is wrong.
@@ -75,8 +116,11 @@ impl GiSettings {
         let switch = match value.trim() {
             "on" | "true" if info.is_switch() => Some(1.0),
             "off" | "false" if info.is_switch() => Some(0.0),
-            _ => None,
+            word => info.choices.iter().position(|c| *c == word).map(|i| i as f64),
         };
+        if switch.is_none() && !info.choices.is_empty() && value.trim().parse::<f64>().is_err() {
+            return Err(format!("gi.{name}: '{value}' is not one of {}", info.choices.join(", ")));
+        }
         let v: f64 = match switch {
             Some(v) => v,
             None => value.trim().parse().map_err(|_| format!("gi.{name}: '{value}' is not a number"))?,
@@ -118,6 +162,10 @@ impl GiSettings {
             // As the setting's own type prints it: 0.15, not the f64 of an f32 (0.15000000596…).
             if f.is_switch() {
                 table += &format!("| `gi.{}` | {} | on, off (1, 0) | {} |\n", f.name, on_off(v == 1.0), f.help);
+                continue;
+            }
+            if let Some(default) = f.choice_name(v) {
+                table += &format!("| `gi.{}` | {default} | {} | {} |\n", f.name, f.choices.join(", "), f.help);
                 continue;
             }
             let default = if f.integer { (v as i64).to_string() } else { (v as f32).to_string() };
@@ -167,6 +215,24 @@ mod tests {
     }
 
     #[test]
+    fn a_choice_takes_its_names_and_its_numbers() {
+        let mut s = GiSettings::default();
+        assert_eq!(s.method, Method::Cuts, "cuts by default");
+        s.set("method", "article").unwrap();
+        assert_eq!(s.method, Method::Article);
+        s.set("method", "0").unwrap();
+        assert_eq!(s.method, Method::Cuts);
+        let e = s.set("method", "volumes").unwrap_err();
+        assert!(e.contains("not one of cuts, article"), "{e}");
+        assert!(s.set("method", "2").unwrap_err().contains("out of range"));
+        let info = GiSettings::FIELDS.iter().find(|f| f.name == "method").unwrap();
+        assert!(!info.is_switch(), "a choice of two is not an on/off switch");
+        assert_eq!(info.choice_name(1.0), Some("article"));
+        let text = toml::to_string(&GiSettings { method: Method::Article, ..GiSettings::default() }).unwrap();
+        assert!(text.contains("method = \"article\""), "{text}");
+    }
+
+    #[test]
     fn retired_settings_of_old_replays_and_configs_are_ignored() {
         let mut s = GiSettings::default();
         for name in RETIRED {
@@ -202,12 +268,15 @@ mod tests {
             "min_rows",
             "history",
             "visibility",
+            "method",
+            "light_budget",
+            "article_interleave",
         ];
         assert_eq!(names, order);
         assert_eq!(
             GiSettings::FIELDS.iter().filter(|f| f.integer).count(),
-            4,
-            "bounces, interleave, min_rows, visibility"
+            7,
+            "bounces, interleave, min_rows, visibility, method, light_budget, article_interleave"
         );
         // Compared as f32: an f32 setting holds the f64 bound to f32 precision.
         let get = |s: &GiSettings, name| s.get(name).map(|v| v as f32);

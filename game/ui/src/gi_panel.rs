@@ -13,8 +13,8 @@ pub const HINT: &str = "F1: settings · Esc: release mouse";
 /// Fields whose range spans orders of magnitude get a logarithmic slider.
 const LOGARITHMIC: &[&str] = &["split_ratio"];
 
-/// The panel's contents: an on/off checkbox, a slider per numeric field or a checkbox per
-/// switch (hover text: the field's help) and a reset button. Returns whether anything changed.
+/// The panel's contents: an on/off checkbox, a slider per numeric field, a checkbox per
+/// switch or a radio button per choice (hover text: the field's help) and a reset button. Returns whether anything changed.
 pub fn sliders(ui: &mut egui::Ui, s: &mut GiSettings) -> bool {
     let before = s.clone();
     ui.checkbox(&mut s.enabled, "enabled").on_hover_text(GiSettings::ENABLED_HELP);
@@ -24,6 +24,18 @@ pub fn sliders(ui: &mut egui::Ui, s: &mut GiSettings) -> bool {
             if ui.checkbox(&mut on, field.name).on_hover_text(field.help).changed() {
                 slider_value(s, field, Some(f64::from(u8::from(on))));
             }
+            continue;
+        }
+        if !field.choices.is_empty() {
+            let current = slider_value(s, field, None).round() as usize;
+            ui.horizontal(|ui| {
+                for (i, name) in field.choices.iter().enumerate() {
+                    if ui.radio(current == i, *name).on_hover_text(field.help).clicked() {
+                        slider_value(s, field, Some(i as f64));
+                    }
+                }
+                ui.label(field.name);
+            });
             continue;
         }
         let slider = egui::Slider::from_get_set(field.min..=field.max, |v| slider_value(s, field, v))

@@ -12,6 +12,7 @@ use super::params::{flux_blocks, flux_size, indirect_size, params, params_desc};
 use crate::gather::{cuts_layout, CutsLayout, Gather, GatherTargets, SumLanes};
 use crate::pyramid::{nodes_desc, FluxSource, PyramidBindings, PyramidPipelines};
 use crate::resources::GiResources;
+use crate::settings::Method;
 use crate::shared::GiHandle;
 
 pub struct BouncePass {
@@ -67,7 +68,8 @@ impl RenderPass for BouncePass {
 
     fn declare(&self, d: &mut PassDecl<'_>) -> Option<BounceIo> {
         let s = self.handle.settings();
-        if !(s.enabled && s.bounces >= 2 && d.view().headlamp.attached) {
+        // (The article's method is its one bounce: see docs/gi.md.)
+        if !(s.enabled && s.bounces >= 2 && d.view().headlamp.attached && s.method == Method::Cuts) {
             return None;
         }
         let (flux, low) = (flux_size(&s, d.size(), true), indirect_size(&s, d.size()));

@@ -10,6 +10,7 @@ use crate::gather::{
 };
 use crate::gpu_types::{CENTRE_LIGHTS, GATHER_STATS_SIZE};
 use crate::resources::GiResources;
+use crate::settings::Method;
 use crate::shared::GiHandle;
 
 pub struct GatherPass {
@@ -93,18 +94,22 @@ impl GatherPass {
 }
 
 impl RenderPass for GatherPass {
-    type Io = GatherIo;
+    /// None with `gi.method = article` (`gi_article` makes the irradiance then).
+    type Io = Option<GatherIo>;
 
     fn name(&self) -> &str {
         "gi_gather"
     }
 
-    fn declare(&self, d: &mut PassDecl<'_>) -> GatherIo {
+    fn declare(&self, d: &mut PassDecl<'_>) -> Option<GatherIo> {
         let settings = self.handle.settings();
+        if settings.method != Method::Cuts {
+            return None;
+        }
         let size = indirect_size(&settings, d.size());
         let layout = cuts_layout(size, flux_size(&settings, d.size(), d.view().headlamp.attached));
         let gi = &self.gi;
-        GatherIo {
+        Some(GatherIo {
             params: d.read(gi.params),
             levels: d.read(gi.levels),
             nodes: d.read(gi.nodes),
@@ -117,10 +122,11 @@ impl RenderPass for GatherPass {
             receivers: d.create(gi.receivers, receivers_desc(size)),
             sight_depth: (settings.visibility == 1).then(|| d.create(gi.sight_depth, sight_depth_desc(d.size()))),
             layout,
-        }
+        })
     }
 
-    fn run(&mut self, io: &GatherIo, ctx: &mut PassContext<'_>) {
+    fn run(&mut self, io: &Option<GatherIo>, ctx: &mut PassContext<'_>) {
+        let Some(io) = io else { return };
         let mut dispatches = 0;
         if let Some(depth) = &io.sight_depth {
             let size = ctx.texture(depth).size();

@@ -1,6 +1,7 @@
 //! The GI's render-graph passes, in frame order. Each WGSL file is named after the Rust module
 //! that loads it (shaders/gi/NAME.wgsl ↔ NAME.rs here or in the crate's root).
 
+mod article;
 mod bounces;
 mod flux;
 mod gather;
@@ -11,6 +12,7 @@ mod reference;
 mod temporal;
 mod view_model_irradiance;
 
+pub use article::ArticlePass;
 pub use bounces::BouncePass;
 pub use flux::FluxPass;
 pub use gather::GatherPass;
@@ -29,6 +31,9 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("gi/gather_invocation.wgsl", crate::gather::GATHER_INVOCATION_SHADER),
     ("gi/sight.wgsl", crate::gather::SIGHT_SHADER),
     ("gi/sight_depth.wgsl", crate::gather::SIGHT_DEPTH_SHADER),
+    ("gi/light_stream.wgsl", crate::light_volumes::STREAM_SHADER),
+    ("gi/light_volumes.wgsl", crate::light_volumes::VOLUMES_SHADER),
+    ("gi/sub_images.wgsl", crate::light_volumes::SUB_IMAGES_SHADER),
     ("gi/indirect.wgsl", indirect::SHADER),
     ("gi/lights_view.wgsl", lights_view::SHADER),
     ("gi/reference.wgsl", reference::SHADER),

@@ -80,6 +80,13 @@ pub(crate) fn indirect_size(settings: &GiSettings, size: (u32, u32)) -> (u32, u3
     crate::gather::fit_cuts_budget(settings.indirect_size().resolve(size), flux_size(settings, size, true))
 }
 
+/// The pyramid's finest level that is built and used: the receivers' footprint, in levels
+/// above the (already subsampled) base.
+pub(crate) fn finest_level(settings: &GiSettings, size: (u32, u32), attached: bool) -> u32 {
+    let indirect = indirect_size(settings, size);
+    crate::settings::min_level(size.1, indirect.1).saturating_sub(halvings(settings, size, attached))
+}
+
 /// A fixed-size rule for a size derived above.
 pub(crate) fn fixed((w, h): (u32, u32)) -> SizeRule {
     SizeRule::Fixed(w, h)
@@ -102,15 +109,14 @@ pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: u32) 
         cos_merge: settings.merge_normal_deg.to_radians().cos(),
         merge_distance: settings.merge_distance,
         split_ratio: settings.split_ratio,
-        // The receivers' footprint, in levels above the (already subsampled) base.
-        min_level: crate::settings::min_level(size.1, indirect.1).saturating_sub(halvings(settings, size, attached)),
+        min_level: finest_level(settings, size, attached),
         source,
         interleave: settings.interleave,
         flux_block: block,
         receiver_offset: grids.receiver_offset,
         sender_offset: grids.sender_offset,
         receiver_parity: grids.receiver_parity,
-        pad: 0,
+        article_interleave: settings.article_interleave,
         view_origin: lamp.position.extend(1.0).to_array(),
         view_forward: (lamp.rotation * Vec3::NEG_Z).extend(0.0).to_array(),
         view_right: (lamp.rotation * Vec3::X * tan_y * lamp.aspect).extend(0.0).to_array(),

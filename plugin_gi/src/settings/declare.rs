@@ -12,13 +12,21 @@ pub struct FieldInfo {
     pub min: f64,
     pub max: f64,
     pub integer: bool,
+    /// Where the setting is one of a few named ways (e.g. `method`: cuts, article): their
+    /// names, the value being the index of one; empty for a plain number.
+    pub choices: &'static [&'static str],
     pub help: &'static str,
 }
 
 impl FieldInfo {
     /// A whole number from 0 to 1: an on/off switch (a checkbox; `--set` takes on/off too).
     pub fn is_switch(&self) -> bool {
-        self.integer && self.min == 0.0 && self.max == 1.0
+        self.integer && self.min == 0.0 && self.max == 1.0 && self.choices.is_empty()
+    }
+
+    /// The name of value `v` of a setting with choices (None for a plain number).
+    pub fn choice_name(&self, v: f64) -> Option<&'static str> {
+        self.choices.get(v.round().max(0.0) as usize).copied()
     }
 }
 
@@ -27,6 +35,8 @@ impl FieldInfo {
 pub(crate) trait Number: Copy {
     /// Whole numbers only: a slider steps by 1, `--set` refuses a fraction.
     const INTEGER: bool;
+    /// The names of the values 0, 1, … where the type is a choice among named ways.
+    const CHOICES: &'static [&'static str] = &[];
     fn to_f64(self) -> f64;
     /// `v` already lies in the setting's range.
     fn from_f64(v: f64) -> Self;
@@ -106,6 +116,7 @@ macro_rules! settings {
                     min: $min as f64,
                     max: $max as f64,
                     integer: <$ty as $crate::settings::declare::Number>::INTEGER,
+                    choices: <$ty as $crate::settings::declare::Number>::CHOICES,
                     help: $help,
                 },
             )*];

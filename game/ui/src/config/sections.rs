@@ -167,6 +167,11 @@ impl OwnSections for GiSettings {
         let _ = write!(out, "\n[gi]\n# global illumination\nenabled = {}\n", self.enabled);
         for field in GiSettings::FIELDS {
             let v = self.get(field.name).expect("every entry of GiSettings::FIELDS has a value");
+            if let Some(name) = field.choice_name(v) {
+                let _ = writeln!(out, "# {} ({})", field.help, field.choices.join(", "));
+                let _ = writeln!(out, "{} = \"{name}\"", field.name);
+                continue;
+            }
             let _ = writeln!(out, "# {} ({} to {})", field.help, field.min, field.max);
             if field.integer {
                 let _ = writeln!(out, "{} = {}", field.name, v as i64);
@@ -190,6 +195,10 @@ fn gi_setting(gi: &mut GiSettings, name: &str, value: &Value) -> Result<(), Stri
         ("enabled", other) => return Err(format!("expected true or false, found {}", other.type_str())),
         // A switch (`FieldInfo::is_switch`) takes true/false as well as 1/0.
         (_, Value::Boolean(b)) if GiSettings::FIELDS.iter().any(|f| f.name == name && f.is_switch()) => b.to_string(),
+        // A choice (`FieldInfo::choices`) takes its name, as written, or its number.
+        (_, Value::String(s)) if GiSettings::FIELDS.iter().any(|f| f.name == name && !f.choices.is_empty()) => {
+            s.clone()
+        }
         (_, Value::Integer(i)) => i.to_string(),
         (_, Value::Float(f)) => format!("{f:?}"),
         (_, other) if GiSettings::FIELDS.iter().any(|f| f.name == name) => {

@@ -47,6 +47,9 @@ fn changed() -> Config {
         min_rows: 60,
         history: 0.25,
         visibility: 0,
+        method: plugin_gi::Method::Article,
+        light_budget: 2048,
+        article_interleave: 2,
     };
     Config {
         mouse_sensitivity: 1.37,

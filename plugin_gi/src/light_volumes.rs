@@ -1,0 +1,320 @@
+//! The article's pipeline (`gi.method = article`), on the same pyramid as the cuts: the
+//! distribution table ([`crate::distribution_table`], made on the CPU when the resolution, the
+//! budget or the lamp changes) chooses the pyramid's slots; a compute pass turns them into the
+//! instance stream of the light volumes and its draw arguments (shaders/gi/light_stream.wgsl);
+//! one indirect draw shades every light's volume additively into the receivers
+//! (light_volumes.wgsl), interleaved over N×N sub-images, which are split before and joined
+//! after (sub_images.wgsl). Three dispatches and one draw, whatever the number of lights.
+
+use engine::headlamp::distribution_texels;
+use engine::scene::IntensityDistribution;
+use engine::wgpu;
+use engine::wgpu::util::DeviceExt;
+
+use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
+use crate::distribution_table::{lamp_importance, DistributionTable};
+use crate::quadtree::Quadtree;
+use crate::shader::module;
+
+pub const STREAM_SHADER: &str = include_str!("../../shaders/gi/light_stream.wgsl");
+pub const VOLUMES_SHADER: &str = include_str!("../../shaders/gi/light_volumes.wgsl");
+pub const SUB_IMAGES_SHADER: &str = include_str!("../../shaders/gi/sub_images.wgsl");
+
+/// The coarse tier has this share of the budget (its lights cover every receiver of their
+/// sub-image, the fine ones only their volumes).
+const COARSE_SHARE: u32 = 4;
+/// A slot is drawn as at most this many lights (an incoherent one refined two levels, a block
+/// spanning a fold as its two sides).
+const LIGHTS_PER_SLOT: u64 = 32;
+/// Bytes of one `VolumeLight` (light_stream.wgsl).
+const VOLUME_LIGHT_SIZE: u64 = 80;
+/// The receivers' positions and normals in their sub-images (sub_images.wgsl).
+const RECEIVERS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+
+/// What the table is made for: when any of it changes, it is made again.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TableKey<'a> {
+    /// The pyramid's base (the flux G-buffer), the lamp view, and a base texel's side in
+    /// lamp-view texels.
+    pub base: (u32, u32),
+    pub view: (u32, u32),
+    pub block: u32,
+    /// The pyramid's finest level built (GiParams::min_level): no slot is finer.
+    pub floor: u32,
+    pub budget: u32,
+    /// N of the N×N sub-images.
+    pub interleave: u32,
+    /// The lamp frustum's vertical field of view and aspect, and its distribution.
+    pub fov_y: f32,
+    pub aspect: f32,
+    pub distribution: &'a IntensityDistribution,
+}
+
+impl TableKey<'_> {
+    pub fn table(&self) -> DistributionTable {
+        let (tw, th, texels) = distribution_texels(self.distribution, self.fov_y, self.aspect);
+        let tan = ((self.fov_y * 0.5).tan() * self.aspect, (self.fov_y * 0.5).tan());
+        let importance = lamp_importance(self.base, self.view, self.block, tan, (tw, th, &texels));
+        let coarse = (self.budget / COARSE_SHARE).max(16);
+        let tree = Quadtree::new(self.base.0, self.base.1);
+        DistributionTable::build(&tree, &importance, self.floor, self.budget, coarse)
+    }
+}
+
+/// What one frame's light volumes read and write.
+pub struct VolumeTargets<'a> {
+    pub params: &'a wgpu::Buffer,
+    pub levels: &'a wgpu::Buffer,
+    pub nodes: &'a wgpu::Buffer,
+    pub normal: &'a wgpu::TextureView,
+    pub position: &'a wgpu::TextureView,
+    /// Where each receiver is evaluated (crate::gather::receivers_desc), written here.
+    pub receivers: &'a wgpu::Buffer,
+    /// The irradiance out (Rgba32Float storage, the gather's format).
+    pub irradiance: &'a wgpu::TextureView,
+    /// The gather's counters and the `lights` view's lights (the fine tier's).
+    pub stats: &'a wgpu::Buffer,
+    pub lights: &'a wgpu::Buffer,
+}
+
+pub struct LightVolumes {
+    stream_layout: wgpu::BindGroupLayout,
+    stream_pipeline: wgpu::ComputePipeline,
+    common_layout: wgpu::BindGroupLayout,
+    split_layout: wgpu::BindGroupLayout,
+    join_layout: wgpu::BindGroupLayout,
+    split_pipeline: wgpu::ComputePipeline,
+    join_pipeline: wgpu::ComputePipeline,
+    volumes_layout: wgpu::BindGroupLayout,
+    volumes_pipeline: wgpu::RenderPipeline,
+    /// Rgba32Float where the device blends it, else Rgba16Float.
+    shaded_format: wgpu::TextureFormat,
+    /// The table in its GPU form, and what it was made for (the key's distribution kept
+    /// beside it, so a frame's key borrows the lamp's instead of copying it).
+    table: Option<(TableKey<'static>, IntensityDistribution, wgpu::Buffer)>,
+    scratch: Option<(ScratchKey, Scratch)>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+struct ScratchKey {
+    entries: u64,
+    target: (u32, u32),
+}
+
+/// The instance stream, its draw arguments and the sub-images.
+struct Scratch {
+    stream: wgpu::Buffer,
+    args: wgpu::Buffer,
+    receivers: wgpu::TextureView,
+    shaded: wgpu::TextureView,
+}
+
+impl LightVolumes {
+    pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, float32_blendable: bool) -> Self {
+        let storage = |read_only| S::Storage { read_only };
+        let stream_layout = layout(
+            device,
+            "gi light stream",
+            &[
+                S::Uniform,
+                storage(true),
+                storage(true),
+                storage(false),
+                storage(false),
+                storage(false),
+                storage(false),
+                S::Uniform,
+            ],
+        );
+        let stream_module = module(device, "gi light stream", STREAM_SHADER);
+        let stream_pipeline =
+            compute_pipeline(device, "gi light stream", &stream_module, "main", &[Some(globals), Some(&stream_layout)]);
+        let common_layout = layout(device, "gi sub-images", &[S::Uniform, S::Texture, S::Texture, storage(false)]);
+        let split_layout = layout(device, "gi sub-images split", &[S::StorageTexture(RECEIVERS_FORMAT)]);
+        let join_layout = layout(
+            device,
+            "gi sub-images join",
+            &[S::UintTexture, S::Texture, S::StorageTexture(wgpu::TextureFormat::Rgba32Float)],
+        );
+        let sub_module = module(device, "gi sub-images", SUB_IMAGES_SHADER);
+        let split_pipeline = compute_pipeline(
+            device,
+            "gi sub-images split",
+            &sub_module,
+            "split",
+            &[Some(globals), Some(&common_layout), Some(&split_layout)],
+        );
+        let join_pipeline = compute_pipeline(
+            device,
+            "gi sub-images join",
+            &sub_module,
+            "join",
+            &[Some(globals), Some(&common_layout), None, Some(&join_layout)],
+        );
+        let volumes_layout = layout(device, "gi light volumes", &[S::Uniform, storage(true), S::UintTexture]);
+        let shaded_format =
+            if float32_blendable { wgpu::TextureFormat::Rgba32Float } else { wgpu::TextureFormat::Rgba16Float };
+        let add = wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::One,
+            dst_factor: wgpu::BlendFactor::One,
+            operation: wgpu::BlendOperation::Add,
+        };
+        let targets = [Some(wgpu::ColorTargetState {
+            format: shaded_format,
+            blend: Some(wgpu::BlendState { color: add, alpha: add }),
+            write_mask: wgpu::ColorWrites::ALL,
+        })];
+        let volumes_module = module(device, "gi light volumes", VOLUMES_SHADER);
+        // Back faces only: each receiver inside a volume is shaded once, the camera inside it
+        // or not.
+        let primitive = wgpu::PrimitiveState { cull_mode: Some(wgpu::Face::Front), ..Default::default() };
+        let volumes_pipeline = engine::passes::procedural_pipeline(
+            device,
+            "gi light volumes",
+            &volumes_module,
+            ("vs_main", "fs_main"),
+            &[Some(globals), Some(&volumes_layout)],
+            &targets,
+            primitive,
+        );
+        Self {
+            stream_layout,
+            stream_pipeline,
+            common_layout,
+            split_layout,
+            join_layout,
+            split_pipeline,
+            join_pipeline,
+            volumes_layout,
+            volumes_pipeline,
+            shaded_format,
+            table: None,
+            scratch: None,
+        }
+    }
+
+    /// The table for `key`, made again only when the key changed; its entries' buffer.
+    fn table(&mut self, device: &wgpu::Device, key: &TableKey) -> &wgpu::Buffer {
+        let same = |(k, d, _): &(TableKey<'static>, IntensityDistribution, wgpu::Buffer)| {
+            TableKey { distribution: key.distribution, ..*k } == *key && d == key.distribution
+        };
+        if !self.table.as_ref().is_some_and(same) {
+            log::info!("gi: distribution table of {} slots over {:?}", key.budget, key.base);
+            let entries = key.table().entries(key.interleave * key.interleave);
+            let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("gi distribution table"),
+                contents: bytemuck::cast_slice(&entries),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
+            static UNIFORM: IntensityDistribution = IntensityDistribution::Uniform;
+            self.table = Some((TableKey { distribution: &UNIFORM, ..*key }, key.distribution.clone(), buffer));
+        }
+        &self.table.as_ref().expect("made above").2
+    }
+
+    /// Records the light volumes of the pyramid in `t` for the table of `key`, over an
+    /// indirect target of `indirect` receivers; returns (dispatches, draws): (3, 1).
+    pub fn record(
+        &mut self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        globals: &wgpu::BindGroup,
+        key: &TableKey,
+        indirect: (u32, u32),
+        t: &VolumeTargets<'_>,
+    ) -> (u32, u32) {
+        let entries = self.table(device, key).size() / 16;
+        let n = key.interleave.max(1);
+        let target = (indirect.0.div_ceil(n) * n, indirect.1.div_ceil(n) * n);
+        let scratch_key = ScratchKey { entries, target };
+        if self.scratch.as_ref().is_none_or(|(k, _)| *k != scratch_key) {
+            let texture = |label, format, usage| {
+                device
+                    .create_texture(&wgpu::TextureDescriptor {
+                        label: Some(label),
+                        size: wgpu::Extent3d { width: target.0, height: target.1, depth_or_array_layers: 1 },
+                        mip_level_count: 1,
+                        sample_count: 1,
+                        dimension: wgpu::TextureDimension::D2,
+                        format,
+                        usage: usage | wgpu::TextureUsages::TEXTURE_BINDING,
+                        view_formats: &[],
+                    })
+                    .create_view(&Default::default())
+            };
+            let scratch = Scratch {
+                stream: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("gi light stream"),
+                    size: entries * LIGHTS_PER_SLOT * VOLUME_LIGHT_SIZE,
+                    usage: wgpu::BufferUsages::STORAGE,
+                    mapped_at_creation: false,
+                }),
+                args: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("gi light volumes' draw arguments"),
+                    size: std::mem::size_of::<wgpu::util::DrawIndirectArgs>() as u64,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT,
+                    mapped_at_creation: false,
+                }),
+                receivers: texture("gi sub-image receivers", RECEIVERS_FORMAT, wgpu::TextureUsages::STORAGE_BINDING),
+                shaded: texture("gi light volumes", self.shaded_format, wgpu::TextureUsages::RENDER_ATTACHMENT),
+            };
+            self.scratch = Some((scratch_key, scratch));
+        }
+        let (_, s) = self.scratch.as_ref().expect("sized above");
+        let (_, _, table) = self.table.as_ref().expect("made above");
+        let common = bind(
+            device,
+            &self.common_layout,
+            &[R::Buffer(t.params), R::View(t.normal), R::View(t.position), R::Buffer(t.receivers)],
+        );
+        let split = bind(device, &self.split_layout, &[R::View(&s.receivers)]);
+        let stream = bind(
+            device,
+            &self.stream_layout,
+            &[
+                R::Buffer(t.levels),
+                R::Buffer(t.nodes),
+                R::Buffer(table),
+                R::Buffer(&s.stream),
+                R::Buffer(&s.args),
+                R::Buffer(t.stats),
+                R::Buffer(t.lights),
+                R::Buffer(t.params),
+            ],
+        );
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("gi light stream"),
+            timestamp_writes: None,
+        });
+        pass.set_bind_group(0, globals, &[]);
+        pass.set_pipeline(&self.split_pipeline);
+        pass.set_bind_group(1, &common, &[]);
+        pass.set_bind_group(2, &split, &[]);
+        pass.dispatch_workgroups(indirect.0.div_ceil(8), indirect.1.div_ceil(8), 1);
+        pass.set_pipeline(&self.stream_pipeline);
+        pass.set_bind_group(1, &stream, &[]);
+        pass.dispatch_workgroups(1, 1, 1);
+        drop(pass);
+
+        let volumes =
+            bind(device, &self.volumes_layout, &[R::Buffer(t.params), R::Buffer(&s.stream), R::View(&s.receivers)]);
+        let mut pass = engine::passes::color_pass(encoder, "gi light volumes", &s.shaded, false);
+        pass.set_pipeline(&self.volumes_pipeline);
+        pass.set_bind_group(0, globals, &[]);
+        pass.set_bind_group(1, &volumes, &[]);
+        pass.draw_indirect(&s.args, 0);
+        drop(pass);
+
+        let join = bind(device, &self.join_layout, &[R::View(&s.receivers), R::View(&s.shaded), R::View(t.irradiance)]);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("gi sub-images join"),
+            timestamp_writes: None,
+        });
+        pass.set_bind_group(0, globals, &[]);
+        pass.set_pipeline(&self.join_pipeline);
+        pass.set_bind_group(1, &common, &[]);
+        pass.set_bind_group(3, &join, &[]);
+        pass.dispatch_workgroups(indirect.0.div_ceil(8), indirect.1.div_ceil(8), 1);
+        (3, 1)
+    }
+}

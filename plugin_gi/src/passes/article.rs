@@ -1,0 +1,109 @@
+//! The first bounce by the article's method (`gi.method = article`), in place of the cuts
+//! gather: the distribution table's lights of the pyramid, drawn as light volumes into the
+//! irradiance (crate::light_volumes). It writes what the gather writes, so the temporal pass,
+//! the composite and the `lights` view read either.
+
+use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, RenderPass, Write};
+use engine::passes::CoreResources;
+use engine::wgpu;
+
+use super::gather::{irradiance_texture, lights_desc, stats_desc};
+use super::params::{finest_level, flux_size, halvings, indirect_size, lamp_view_size};
+use crate::gather::receivers_desc;
+use crate::light_volumes::{LightVolumes, TableKey, VolumeTargets};
+use crate::resources::GiResources;
+use crate::settings::Method;
+use crate::shared::GiHandle;
+
+pub struct ArticlePass {
+    handle: GiHandle,
+    core: CoreResources,
+    gi: GiResources,
+    volumes: LightVolumes,
+}
+
+pub struct ArticleIo {
+    params: Read<Buffer>,
+    levels: Read<Buffer>,
+    nodes: Read<Buffer>,
+    normal: Read<Image>,
+    position: Read<Image>,
+    irradiance: Write<Image>,
+    stats: Write<Buffer>,
+    lights: Write<Buffer>,
+    receivers: Write<Buffer>,
+    indirect: (u32, u32),
+}
+
+impl ArticlePass {
+    pub(crate) fn new(
+        gpu: &engine::gpu::Gpu,
+        globals: &wgpu::BindGroupLayout,
+        handle: GiHandle,
+        core: CoreResources,
+        gi: GiResources,
+    ) -> Self {
+        Self { volumes: LightVolumes::new(&gpu.device, globals, gpu.float32_blendable()), handle, core, gi }
+    }
+}
+
+impl RenderPass for ArticlePass {
+    type Io = Option<ArticleIo>;
+
+    fn name(&self) -> &str {
+        "gi_article"
+    }
+
+    fn declare(&self, d: &mut PassDecl<'_>) -> Option<ArticleIo> {
+        let settings = self.handle.settings();
+        if settings.method != Method::Article {
+            return None;
+        }
+        let indirect = indirect_size(&settings, d.size());
+        let gi = &self.gi;
+        Some(ArticleIo {
+            params: d.read(gi.params),
+            levels: d.read(gi.levels),
+            nodes: d.read(gi.nodes),
+            normal: d.read(self.core.gbuffer.normal),
+            position: d.read(self.core.gbuffer.position),
+            irradiance: d.create(gi.irradiance, irradiance_texture(indirect)),
+            stats: d.create(gi.stats, stats_desc()),
+            lights: d.create(gi.lights, lights_desc()),
+            receivers: d.create(gi.receivers, receivers_desc(indirect)),
+            indirect,
+        })
+    }
+
+    fn run(&mut self, io: &Option<ArticleIo>, ctx: &mut PassContext<'_>) {
+        let Some(io) = io else { return };
+        let settings = self.handle.settings();
+        let (size, attached) = (ctx.frame.size, ctx.frame.view.headlamp.attached);
+        let key = TableKey {
+            base: flux_size(&settings, size, attached),
+            view: lamp_view_size(size, attached),
+            block: 1 << halvings(&settings, size, attached),
+            floor: finest_level(&settings, size, attached),
+            budget: settings.light_budget,
+            interleave: settings.article_interleave,
+            fov_y: ctx.frame.lamp.fov_y,
+            aspect: ctx.frame.lamp.aspect,
+            distribution: &ctx.frame.view.headlamp.profile.distribution,
+        };
+        let targets = VolumeTargets {
+            params: ctx.buffer(&io.params),
+            levels: ctx.buffer(&io.levels),
+            nodes: ctx.buffer(&io.nodes),
+            normal: ctx.view(&io.normal),
+            position: ctx.view(&io.position),
+            receivers: ctx.buffer(&io.receivers),
+            irradiance: ctx.view(&io.irradiance),
+            stats: ctx.buffer(&io.stats),
+            lights: ctx.buffer(&io.lights),
+        };
+        let (dispatches, draws) =
+            self.volumes.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, &key, io.indirect, &targets);
+        ctx.count_dispatches(dispatches);
+        ctx.count_draws(draws);
+    }
+}

@@ -1,0 +1,163 @@
+// The article's deferred shading of reflection lights: every light of the instance stream
+// (light_stream.wgsl) is one instance of a light-volume mesh, drawn additively into the
+// receivers it can reach, whose positions and normals it reads (the camera G-buffer's, at the
+// receivers' texels: sub_images.wgsl). One indirect draw, whatever the number of lights.
+//
+// Interleaved sampling (Segovia et al. 2006): the receivers are split into N×N sub-images,
+// sub-image (i, j) holding every receiver q with q mod N = (i, j), and each light is drawn
+// into the sub-image of its subset only: it shades 1/N² of the receivers. sub_images.wgsl's
+// `join` then gives each receiver every subset's light from its neighbours on its surface.
+//
+// A coarse light covers its whole sub-image (a quad); a fine light an icosahedron around the
+// sphere of its volume (see light_stream.wgsl), its back faces only, so each receiver inside
+// is shaded once wherever the camera is, and at a fixed depth, so no face is clipped.
+#include "common.wgsl"
+#include "gi_common.wgsl"
+
+struct VolumeLight {
+    position: vec3f,
+    area: f32,
+    normal: vec3f,
+    radius: f32,
+    flux: vec3f,
+    subset: u32,
+    proxy_position: vec3f,
+    proxy_area: f32,
+    proxy_normal: vec3f,
+    pad: u32,
+};
+
+@group(1) @binding(0) var<uniform> params: GiParams;
+@group(1) @binding(1) var<storage, read> stream: array<VolumeLight>;
+// Each receiver's position (as bits) and packed normal (NO_NORMAL: no surface), where its
+// sub-image holds it (sub_images.wgsl).
+@group(1) @binding(2) var receivers: texture_2d<u32>;
+
+// An icosahedron: 12 vertices on the unit sphere's axes' golden rectangles, 20 faces, each
+// counter-clockwise seen from outside.
+const T: f32 = 1.618034;
+const ICO_VERTICES = array<vec3f, 12>(
+    vec3f(-1.0, T, 0.0), vec3f(1.0, T, 0.0), vec3f(-1.0, -T, 0.0), vec3f(1.0, -T, 0.0),
+    vec3f(0.0, -1.0, T), vec3f(0.0, 1.0, T), vec3f(0.0, -1.0, -T), vec3f(0.0, 1.0, -T),
+    vec3f(T, 0.0, -1.0), vec3f(T, 0.0, 1.0), vec3f(-T, 0.0, -1.0), vec3f(-T, 0.0, 1.0),
+);
+const ICO_INDICES = array<u32, 60>(
+    0u, 11u, 5u, 0u, 5u, 1u, 0u, 1u, 7u, 0u, 7u, 10u, 0u, 10u, 11u,
+    1u, 5u, 9u, 5u, 11u, 4u, 11u, 10u, 2u, 10u, 7u, 6u, 7u, 1u, 8u,
+    3u, 9u, 4u, 3u, 4u, 2u, 3u, 2u, 6u, 3u, 6u, 8u, 3u, 8u, 9u,
+    4u, 9u, 5u, 2u, 4u, 11u, 6u, 2u, 10u, 8u, 6u, 7u, 9u, 8u, 1u,
+);
+// The circumradius that puts the faces of the unit-circumradius icosahedron at distance 1
+// from its centre (1 / 0.7947), and a little more: a receiver's place in its sub-image is
+// rounded to whole receivers, up to N/2 of the view's receivers off.
+const ENCLOSING: f32 = 1.30;
+
+// The light travels with its fragments (flat), so a fragment loads nothing of it.
+struct VolumeOut {
+    @builtin(position) clip: vec4f,
+    // position, area; normal, radius; flux; proxy position, proxy area; proxy normal.
+    @location(0) @interpolate(flat) position_area: vec4f,
+    @location(1) @interpolate(flat) normal_radius: vec4f,
+    @location(2) @interpolate(flat) flux: vec3f,
+    @location(3) @interpolate(flat) proxy: vec4f,
+    @location(4) @interpolate(flat) proxy_normal: vec3f,
+    @location(5) @interpolate(flat) subset: u32,
+};
+
+// The sub-images' side (N) and size in receivers.
+fn sub_side() -> u32 {
+    return max(params.article_interleave, 1u);
+}
+
+fn sub_size() -> vec2u {
+    return (params.indirect_size + sub_side() - 1u) / sub_side();
+}
+
+// A point of the camera's clip space, placed in sub-image `s` of the target (the sub-images
+// side by side, N·sub_size each way) where the receivers it falls among are: receiver q
+// (q mod N = the tile) is evaluated at view pixel (q + ½ + receiver_offset) of the indirect
+// target and shaded at pixel q / N of its sub-image. Linear in clip space, so it keeps
+// perspective.
+fn into_sub_image(clip: vec4f, s: u32) -> vec4f {
+    let n = f32(sub_side());
+    let tile = vec2f(f32(s % sub_side()), f32(s / sub_side()));
+    let size = vec2f(sub_size());
+    let r = vec2f(params.indirect_size);
+    // The sub-image pixel (target pixels) of the view's centre, and its pixels per NDC unit.
+    let centre = tile * size + (r * 0.5 - params.receiver_offset - tile - 0.5) / n + 0.5;
+    let a = r / (n * n * size);
+    let b = 2.0 * centre / (n * size);
+    let x = clip.x * a.x + clip.w * (b.x - 1.0);
+    let y = clip.y * a.y + clip.w * (1.0 - b.y);
+    // (Depth is not tested: every fragment at mid-depth, never clipped by near or far.)
+    return vec4f(x, y, 0.5 * clip.w, clip.w);
+}
+
+// Corner c (−1 or 1 each way, NDC) of sub-image `s` in the target.
+fn tile_corner(c: vec2f, s: u32) -> vec4f {
+    let n = f32(sub_side());
+    let tile = vec2f(f32(s % sub_side()), f32(s / sub_side()));
+    let x = -1.0 + (2.0 * tile.x + c.x + 1.0) / n;
+    let y = 1.0 - (2.0 * tile.y + 1.0 - c.y) / n;
+    return vec4f(x, y, 0.5, 1.0);
+}
+
+@vertex
+fn vs_main(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VolumeOut {
+    let light = stream[i];
+    var out: VolumeOut;
+    out.position_area = vec4f(light.position, light.area);
+    out.normal_radius = vec4f(light.normal, light.radius);
+    out.flux = light.flux;
+    out.subset = light.subset;
+    out.proxy = vec4f(light.proxy_position, light.proxy_area);
+    out.proxy_normal = light.proxy_normal;
+    if light.radius < 0.0 {
+        // The sub-image's quad: two triangles, clockwise in the target's NDC (back faces, the
+        // ones this pipeline draws).
+        let corners = array<vec2f, 6>(vec2f(-1.0, -1.0), vec2f(-1.0, 1.0), vec2f(1.0, 1.0), vec2f(-1.0, -1.0),
+            vec2f(1.0, 1.0), vec2f(1.0, -1.0));
+        out.clip = select(vec4f(0.0), tile_corner(corners[v % 6u], light.subset), v < 6u);
+        return out;
+    }
+    let corner = normalize(ICO_VERTICES[ICO_INDICES[v]]) * ENCLOSING * light.radius;
+    out.clip = into_sub_image(globals.view_proj * vec4f(light.proxy_position + corner, 1.0), light.subset);
+    return out;
+}
+
+// The fade of a fine light's volume: whole over its inner half, to nothing at its edge.
+fn fade(distance: f32, radius: f32) -> f32 {
+    return clamp(2.0 - 2.0 * distance / radius, 0.0, 1.0);
+}
+
+@fragment
+fn fs_main(in: VolumeOut) -> @location(0) vec4f {
+    let light = VolumeLight(in.position_area.xyz, in.position_area.w, in.normal_radius.xyz, in.normal_radius.w,
+        in.flux, in.subset, in.proxy.xyz, in.proxy.w, in.proxy_normal, 0u);
+    let n = sub_side();
+    let p = vec2u(in.clip.xy);
+    let size = sub_size();
+    let tile = p / size;
+    // Only the light's own sub-image (a volume spills into its neighbours' at their edges),
+    // and only receivers of the view.
+    let q = (p % size) * n + tile;
+    if tile.y * n + tile.x != light.subset || any(tile >= vec2u(n)) || any(q >= params.indirect_size) {
+        discard;
+    }
+    let r = textureLoad(receivers, vec2i(p), 0);
+    if r.w == NO_NORMAL {
+        discard;
+    }
+    let x = bitcast<vec3f>(r.xyz);
+    let normal = unpack_normal(r.w);
+    if light.radius < 0.0 {
+        return vec4f(disc_irradiance(light.flux, light.area, light.position, light.normal, x, normal), 0.0);
+    }
+    let w = fade(length(x - light.proxy_position), light.radius);
+    if w <= 0.0 {
+        discard;
+    }
+    let own = disc_irradiance(light.flux, light.area, light.position, light.normal, x, normal);
+    let share = disc_irradiance(light.flux, light.proxy_area, light.proxy_position, light.proxy_normal, x, normal);
+    return vec4f(w * (own - share), 0.0);
+}
