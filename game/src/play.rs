@@ -510,6 +510,7 @@ impl GameWindow {
             pass_times_ms: self.pass_times.clone(),
             // Read back with the pass times.
             reflection_lights: self.reflection_lights.unwrap_or(0),
+            light_volumes: self.config.gi.method == plugin_gi::Method::Article,
             ticks: self.ticks_this_frame,
             render_scale: self.renderer.as_ref().map_or(self.config.render_scale, |r| r.render_scale()),
             target_fps: self.resolution.as_ref().map(|d| d.target_fps()),
@@ -718,8 +719,12 @@ impl WindowApp for GameWindow {
                 self.pass_times = times;
             }
             if self.config.gi.enabled {
-                self.reflection_lights =
-                    plugin_gi::readback::cut_stats(gpu, renderer).map(|s| s.lights_per_tile().round() as u32);
+                self.reflection_lights = match self.config.gi.method {
+                    plugin_gi::Method::Cuts => {
+                        plugin_gi::readback::cut_stats(gpu, renderer).map(|s| s.lights_per_tile().round() as u32)
+                    }
+                    plugin_gi::Method::Article => plugin_gi::readback::volume_stats(gpu, renderer).map(|s| s.drawn),
+                };
             } else {
                 self.reflection_lights = Some(0);
             }

@@ -6,13 +6,13 @@
 //! [`SumLanes`]). With `gi.visibility` two more before the sum: the view depth at half the
 //! G-buffer's size (shaders/gi/sight_depth.wgsl), then which lights nine of each tile's
 //! receivers see, marched through it (shaders/gi/sight.wgsl). The cuts buffer and the sight
-//! depth are graph resources (see [`cuts_desc`], [`sight_depth_desc`]: the first bounce's
+//! depth are graph resources (see [`cuts_desc`], [`crate::sight_depth`]: the first bounce's
 //! gather makes the depth once a frame, further bounces march the same); the retry list and
 //! the sight bits are this gather's own scratch. The calls cover every tile at once, so their number never depends
 //! on the resolution: the indirect target is kept small enough ([`fit_cuts_budget`]) that
 //! every tile's cut fits the budget.
 
-use engine::graph::{BufferDesc, TextureDesc};
+use engine::graph::BufferDesc;
 use engine::wgpu;
 
 use crate::bindings::{bind, compute_pipeline, compute_pipeline_with, layout, Resource as R, Slot as S};
@@ -24,7 +24,6 @@ pub const CUTS_SHADER: &str = include_str!("../../shaders/gi/cuts.wgsl");
 pub const GATHER_SUBGROUP_SHADER: &str = include_str!("../../shaders/gi/gather_subgroup.wgsl");
 pub const GATHER_INVOCATION_SHADER: &str = include_str!("../../shaders/gi/gather_invocation.wgsl");
 pub const SIGHT_SHADER: &str = include_str!("../../shaders/gi/sight.wgsl");
-pub const SIGHT_DEPTH_SHADER: &str = include_str!("../../shaders/gi/sight_depth.wgsl");
 
 /// How the sum's invocations load their lights.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,8 +68,7 @@ pub struct GatherTargets<'a> {
     /// Where each receiver is evaluated ([`receivers_desc`]): the cuts pass finds it, the sum
     /// reads it.
     pub receivers: &'a wgpu::Buffer,
-    /// With visibility: the view depth to march ([`sight_depth_desc`], made by
-    /// [`Gather::record_sight_depth`]); `None` without.
+    /// With visibility: the view depth to march ([`crate::sight_depth`]); `None` without.
     pub sight_depth: Option<&'a wgpu::TextureView>,
 }
 
@@ -82,8 +80,6 @@ pub struct Gather {
     retry_pipeline: wgpu::ComputePipeline,
     sight_layout: wgpu::BindGroupLayout,
     sight_pipeline: wgpu::ComputePipeline,
-    depth_layout: wgpu::BindGroupLayout,
-    depth_pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     /// The sum without visibility and with it (the `VISIBILITY` override).
     pipelines: [wgpu::ComputePipeline; 2],
@@ -99,14 +95,6 @@ struct Scratch {
     retry_args: wgpu::Buffer,
     /// One u32 a slot of the cuts: which of the tile's nine tested receivers see the light there.
     sight: wgpu::Buffer,
-}
-
-/// The view depth the sight pass marches, for a G-buffer of `gbuffer` texels: R32Float, half
-/// its size each way, rounded up (shaders/gi/sight_depth.wgsl).
-pub fn sight_depth_desc(gbuffer: (u32, u32)) -> TextureDesc {
-    let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
-    TextureDesc { usage, ..TextureDesc::target(wgpu::TextureFormat::R32Float) }
-        .fixed(gbuffer.0.div_ceil(2), gbuffer.1.div_ceil(2))
 }
 
 /// Receivers per tile side (`CUT_TILE` in gi_common.wgsl).
@@ -216,11 +204,6 @@ impl Gather {
         let sight_module = module(device, "gi sight", SIGHT_SHADER);
         let sight_pipeline =
             compute_pipeline(device, "gi sight", &sight_module, "main", &[Some(globals), Some(&sight_layout)]);
-        let depth_layout =
-            layout(device, "gi sight depth", &[S::Texture, S::StorageTexture(wgpu::TextureFormat::R32Float)]);
-        let depth_module = module(device, "gi sight depth", SIGHT_DEPTH_SHADER);
-        let depth_pipeline =
-            compute_pipeline(device, "gi sight depth", &depth_module, "main", &[Some(globals), Some(&depth_layout)]);
         let layout = layout(
             device,
             "gi gather",
@@ -268,33 +251,10 @@ impl Gather {
             retry_pipeline,
             sight_layout,
             sight_pipeline,
-            depth_layout,
-            depth_pipeline,
             layout,
             pipelines,
             scratch: None,
         }
-    }
-
-    /// Records the sight depth (`depth`, [`sight_depth_desc`] of `size`) from the G-buffer's
-    /// `position`; returns the number of dispatches, one.
-    pub fn record_sight_depth(
-        &self,
-        device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        globals: &wgpu::BindGroup,
-        position: &wgpu::TextureView,
-        depth: &wgpu::TextureView,
-        size: (u32, u32),
-    ) -> u32 {
-        let group = bind(device, &self.depth_layout, &[R::View(position), R::View(depth)]);
-        let mut pass = encoder
-            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi sight depth"), timestamp_writes: None });
-        pass.set_bind_group(0, globals, &[]);
-        pass.set_pipeline(&self.depth_pipeline);
-        pass.set_bind_group(1, &group, &[]);
-        pass.dispatch_workgroups(size.0.div_ceil(8), size.1.div_ceil(8), 1);
-        1
     }
 
     /// Records the gather into `t` laid out as `layout` (as `t.cuts` was sized), with light

@@ -82,7 +82,9 @@ engine::gpu_struct! {
 
 engine::gpu_struct! {
     /// The gather's counters, `Stats` in cuts.wgsl (which fills them; atomics there): first the
-    /// `lights` view's indirect draw arguments (the centre tile's cut), then the totals.
+    /// `lights` view's indirect draw arguments (the centre tile's cut), then the totals. With
+    /// `gi.method = article` light_stream.wgsl fills them: the dots are the fine tier's lights,
+    /// `lights` the volumes drawn, `tiles` the distribution table's slots, `full` 0.
     #[repr(C)]
     #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
     pub struct GatherStats as Stats {

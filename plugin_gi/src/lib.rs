@@ -22,6 +22,7 @@ mod resources;
 mod settings;
 mod shader;
 mod shared;
+mod sight_depth;
 
 use engine::graph::Stage;
 use engine::passes::OutputView;

@@ -72,6 +72,11 @@ pub struct VolumeTargets<'a> {
     pub receivers: &'a wgpu::Buffer,
     /// The irradiance out (Rgba32Float storage, the gather's format).
     pub irradiance: &'a wgpu::TextureView,
+    /// With visibility: the view depth to march (crate::sight_depth), made before; None
+    /// without.
+    pub sight_depth: Option<&'a wgpu::TextureView>,
+    /// A texture to bind in its place without visibility.
+    pub sink: &'a wgpu::TextureView,
     /// The gather's counters and the `lights` view's lights (the fine tier's).
     pub stats: &'a wgpu::Buffer,
     pub lights: &'a wgpu::Buffer,
@@ -86,7 +91,8 @@ pub struct LightVolumes {
     split_pipeline: wgpu::ComputePipeline,
     join_pipeline: wgpu::ComputePipeline,
     volumes_layout: wgpu::BindGroupLayout,
-    volumes_pipeline: wgpu::RenderPipeline,
+    /// Without visibility and with it.
+    volumes_pipelines: [wgpu::RenderPipeline; 2],
     /// Rgba32Float where the device blends it, else Rgba16Float.
     shaded_format: wgpu::TextureFormat,
     /// The table in its GPU form, and what it was made for (the key's distribution kept
@@ -151,7 +157,8 @@ impl LightVolumes {
             "join",
             &[Some(globals), Some(&common_layout), None, Some(&join_layout)],
         );
-        let volumes_layout = layout(device, "gi light volumes", &[S::Uniform, storage(true), S::UintTexture]);
+        let volumes_layout =
+            layout(device, "gi light volumes", &[S::Uniform, storage(true), S::UintTexture, S::Texture]);
         let shaded_format =
             if float32_blendable { wgpu::TextureFormat::Rgba32Float } else { wgpu::TextureFormat::Rgba16Float };
         let add = wgpu::BlendComponent {
@@ -165,18 +172,39 @@ impl LightVolumes {
             write_mask: wgpu::ColorWrites::ALL,
         })];
         let volumes_module = module(device, "gi light volumes", VOLUMES_SHADER);
-        // Back faces only: each receiver inside a volume is shaded once, the camera inside it
-        // or not.
-        let primitive = wgpu::PrimitiveState { cull_mode: Some(wgpu::Face::Front), ..Default::default() };
-        let volumes_pipeline = engine::passes::procedural_pipeline(
-            device,
-            "gi light volumes",
-            &volumes_module,
-            ("vs_main", "fs_main"),
-            &[Some(globals), Some(&volumes_layout)],
-            &targets,
-            primitive,
-        );
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gi light volumes"),
+            bind_group_layouts: &[Some(globals), Some(&volumes_layout)],
+            immediate_size: 0,
+        });
+        // Without visibility and with it (the shader's VISIBILITY).
+        let volumes_pipelines = [false, true].map(|visibility| {
+            let constants = [("VISIBILITY", f64::from(u8::from(visibility)))];
+            let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("gi light volumes"),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &volumes_module,
+                    entry_point: Some("vs_main"),
+                    compilation_options: options.clone(),
+                    buffers: &[],
+                },
+                // Back faces only: each receiver inside a volume is shaded once, the camera
+                // inside it or not.
+                primitive: wgpu::PrimitiveState { cull_mode: Some(wgpu::Face::Front), ..Default::default() },
+                depth_stencil: None,
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &volumes_module,
+                    entry_point: Some("fs_main"),
+                    compilation_options: options,
+                    targets: &targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        });
         Self {
             stream_layout,
             stream_pipeline,
@@ -186,7 +214,7 @@ impl LightVolumes {
             split_pipeline,
             join_pipeline,
             volumes_layout,
-            volumes_pipeline,
+            volumes_pipelines,
             shaded_format,
             table: None,
             scratch: None,
@@ -296,10 +324,14 @@ impl LightVolumes {
         pass.dispatch_workgroups(1, 1, 1);
         drop(pass);
 
-        let volumes =
-            bind(device, &self.volumes_layout, &[R::Buffer(t.params), R::Buffer(&s.stream), R::View(&s.receivers)]);
+        let depth = t.sight_depth.unwrap_or(t.sink);
+        let volumes = bind(
+            device,
+            &self.volumes_layout,
+            &[R::Buffer(t.params), R::Buffer(&s.stream), R::View(&s.receivers), R::View(depth)],
+        );
         let mut pass = engine::passes::color_pass(encoder, "gi light volumes", &s.shaded, false);
-        pass.set_pipeline(&self.volumes_pipeline);
+        pass.set_pipeline(&self.volumes_pipelines[usize::from(t.sight_depth.is_some())]);
         pass.set_bind_group(0, globals, &[]);
         pass.set_bind_group(1, &volumes, &[]);
         pass.draw_indirect(&s.args, 0);

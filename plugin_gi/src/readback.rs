@@ -39,6 +39,22 @@ pub fn cut_stats(gpu: &Gpu, renderer: &Renderer) -> Option<CutStats> {
     Some(CutStats { lights: stats.lights as u64, tiles: stats.tiles, full_tiles: stats.full })
 }
 
+/// What the article's method (`gi.method = article`) drew in the last frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct VolumeStats {
+    /// Light volumes drawn (the instance stream's length).
+    pub drawn: u32,
+    /// Slots of the distribution table, both tiers.
+    pub slots: u32,
+}
+
+/// The article's figures; read them only with `gi.method = article` (the cuts fill the same
+/// counters with theirs: [`cut_stats`]).
+pub fn volume_stats(gpu: &Gpu, renderer: &Renderer) -> Option<VolumeStats> {
+    let stats = gather_stats(gpu, renderer)?;
+    Some(VolumeStats { drawn: stats.lights, slots: stats.tiles })
+}
+
 /// The gather's counters of the last frame.
 fn gather_stats(gpu: &Gpu, renderer: &Renderer) -> Option<GatherStats> {
     let bytes = read_buffer(gpu, renderer.graph().buffer_by_label(names::STATS)?);

@@ -23,7 +23,7 @@ pub(crate) struct GiResources {
     /// (x | y << 16), found by the cuts pass for the gather and temporal passes.
     pub receivers: Handle<Buffer>,
     /// With `gi.visibility`: the view depth the sight pass marches, at half the G-buffer's
-    /// size (crate::gather::sight_depth_desc), made by `gi_gather` for every bounce.
+    /// size (crate::sight_depth), made by `gi_gather` for every bounce, or by `gi_article`.
     pub sight_depth: Handle<Image>,
     /// The irradiance blended over frames (`gi_temporal`), which the composite upsamples.
     pub history: History<Image>,

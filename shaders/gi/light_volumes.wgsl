@@ -10,7 +10,8 @@
 //
 // A coarse light covers its whole sub-image (a quad); a fine light an icosahedron around the
 // sphere of its volume (see light_stream.wgsl), its back faces only, so each receiver inside
-// is shaded once wherever the camera is, and at a fixed depth, so no face is clipped.
+// is shaded once wherever the camera is, and at a fixed depth, so no face is clipped. With
+// `gi.visibility` each fragment marches to its light (visibility.wgsl).
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -32,6 +33,15 @@ struct VolumeLight {
 // Each receiver's position (as bits) and packed normal (NO_NORMAL: no surface), where its
 // sub-image holds it (sub_images.wgsl).
 @group(1) @binding(2) var receivers: texture_2d<u32>;
+// With VISIBILITY: the view depth the march reads (sight_depth.wgsl).
+@group(1) @binding(3) var sight_depth: texture_2d<f32>;
+
+#include "visibility.wgsl"
+
+// Whether light is stopped by the surfaces between (gi.visibility): each fragment marches the
+// segment from its receiver to its light, as the sight pass does for the cuts' nine receivers
+// a tile. A pipeline each way.
+override VISIBILITY: bool = false;
 
 // An icosahedron: 12 vertices on the unit sphere's axes' golden rectangles, 20 faces, each
 // counter-clockwise seen from outside.
@@ -62,6 +72,8 @@ struct VolumeOut {
     @location(3) @interpolate(flat) proxy: vec4f,
     @location(4) @interpolate(flat) proxy_normal: vec3f,
     @location(5) @interpolate(flat) subset: u32,
+    // With VISIBILITY: the light in clip space (`globals.view_proj`).
+    @location(6) @interpolate(flat) light_clip: vec4f,
 };
 
 // The sub-images' side (N) and size in receivers.
@@ -110,6 +122,9 @@ fn vs_main(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> Vo
     out.normal_radius = vec4f(light.normal, light.radius);
     out.flux = light.flux;
     out.subset = light.subset;
+    if VISIBILITY {
+        out.light_clip = globals.view_proj * vec4f(light.position, 1.0);
+    }
     out.proxy = vec4f(light.proxy_position, light.proxy_area);
     out.proxy_normal = light.proxy_normal;
     if light.radius < 0.0 {
@@ -123,6 +138,15 @@ fn vs_main(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> Vo
     let corner = normalize(ICO_VERTICES[ICO_INDICES[v]]) * ENCLOSING * light.radius;
     out.clip = into_sub_image(globals.view_proj * vec4f(light.proxy_position + corner, 1.0), light.subset);
     return out;
+}
+
+// 1 where the receiver at x sees the light at `light` (clip space), else 0; 1 without
+// VISIBILITY.
+fn sees(x: vec3f, light: vec4f) -> f32 {
+    if !VISIBILITY {
+        return 1.0;
+    }
+    return select(0.0, 1.0, clip_segment_seen(globals.view_proj * vec4f(x, 1.0), light));
 }
 
 // The fade of a fine light's volume: whole over its inner half, to nothing at its edge.
@@ -151,7 +175,8 @@ fn fs_main(in: VolumeOut) -> @location(0) vec4f {
     let x = bitcast<vec3f>(r.xyz);
     let normal = unpack_normal(r.w);
     if light.radius < 0.0 {
-        return vec4f(disc_irradiance(light.flux, light.area, light.position, light.normal, x, normal), 0.0);
+        let e = disc_irradiance(light.flux, light.area, light.position, light.normal, x, normal);
+        return vec4f(e * sees(x, in.light_clip), 0.0);
     }
     let w = fade(length(x - light.proxy_position), light.radius);
     if w <= 0.0 {
@@ -159,5 +184,7 @@ fn fs_main(in: VolumeOut) -> @location(0) vec4f {
     }
     let own = disc_irradiance(light.flux, light.area, light.position, light.normal, x, normal);
     let share = disc_irradiance(light.flux, light.proxy_area, light.proxy_position, light.proxy_normal, x, normal);
-    return vec4f(w * (own - share), 0.0);
+    // (One march, to the light, for both terms: its coarse light lies about it, and a second
+    // march cost the frame a tenth more.)
+    return vec4f(w * (own - share) * sees(x, in.light_clip), 0.0);
 }

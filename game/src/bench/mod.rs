@@ -20,6 +20,7 @@ use serde::Serialize;
 
 use crate::cli::BenchArgs;
 use crate::world_reference::WorldReference;
+use plugin_gi::Method;
 use timing::WARMUP_FRAMES;
 
 mod camera_path;
@@ -56,11 +57,14 @@ pub struct FrameFigure {
 
 #[derive(Serialize, Debug)]
 pub struct LightFigure {
-    /// Median over the sampled frames of the reflection lights per 8×8 tile of the indirect
-    /// target (each tile's cut through the pyramid).
+    /// What is counted: "per_tile", the reflection lights per 8×8 tile of the indirect target
+    /// (each tile's cut through the pyramid), or with `gi.method = article` "volumes", the
+    /// light volumes drawn.
+    pub counted: &'static str,
+    /// Median over the sampled frames of that count.
     pub median: f64,
-    /// Which frames were re-rendered (untimed) to read the figures back, their lights per tile,
-    /// and how many tiles filled their cut.
+    /// Which frames were re-rendered (untimed) to read the figures back, their count, and how
+    /// many tiles filled their cut (the article's method: the distribution table's slots).
     pub frames: Vec<usize>,
     pub per_tile: Vec<f64>,
     pub full_tiles: Vec<u32>,
@@ -151,6 +155,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
 }
 
 fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) -> anyhow::Result<Report> {
+    let method = gi.method;
     let (plugins, handle) = crate::plugins(gi);
     let mut renderer = Renderer::new(gpu, &level.scene, plugins)?;
     renderer.set_view("final").map_err(|e| anyhow!(e))?;
@@ -212,15 +217,24 @@ fn bench(gpu: &Gpu, level: &Level, args: &BenchArgs, gi: plugin_gi::GiSettings) 
     for &i in &samples {
         view.camera = path.camera(i, n);
         renderer.render(gpu, &view, &target.texture, &target.view)?;
-        match plugin_gi::readback::cut_stats(gpu, &renderer) {
-            Some(cut) => {
-                per_tile.push(cut.lights_per_tile());
-                full_tiles.push(cut.full_tiles);
+        let figures = match method {
+            Method::Cuts => plugin_gi::readback::cut_stats(gpu, &renderer).map(|c| (c.lights_per_tile(), c.full_tiles)),
+            Method::Article => plugin_gi::readback::volume_stats(gpu, &renderer).map(|v| (f64::from(v.drawn), v.slots)),
+        };
+        match figures {
+            Some((count, other)) => {
+                per_tile.push(count);
+                full_tiles.push(other);
             }
             None => break, // the GI is off: its passes are not scheduled
         }
     }
+    let counted = match method {
+        Method::Cuts => "per_tile",
+        Method::Article => "volumes",
+    };
     let reflection_lights = (per_tile.len() == samples.len()).then(|| LightFigure {
+        counted,
         median: Spread::of(&per_tile).median,
         frames: samples,
         per_tile,
@@ -327,6 +341,17 @@ pub fn table(r: &Report) -> String {
         writeln!(s, "| **frame, CPU wall (render + wait)** | {:.3} | {:.3} | **{:.1} fps** |", c.median, c.p90, r.fps);
     let _ = writeln!(s);
     match &r.reflection_lights {
+        Some(l) if l.counted == "volumes" => {
+            let drawn: Vec<String> = l.per_tile.iter().map(|v| format!("{v:.0}")).collect();
+            let _ = writeln!(
+                s,
+                "light volumes drawn (the article's method): median {:.0} (frames {:?}: [{}]; distribution table slots: {:?})",
+                l.median,
+                l.frames,
+                drawn.join(", "),
+                l.full_tiles.first().copied().unwrap_or(0)
+            );
+        }
         Some(l) => {
             let per_tile: Vec<String> = l.per_tile.iter().map(|v| format!("{v:.0}")).collect();
             let _ = writeln!(

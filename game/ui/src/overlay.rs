@@ -11,8 +11,10 @@ pub struct OverlayInfo {
     /// Each render-graph pass and its GPU time, in execution order (`Renderer::last_pass_times`);
     /// empty when timing is off or unsupported.
     pub pass_times_ms: Vec<(String, f64)>,
-    /// The reflection lights that lit an 8×8 tile of the indirect target last frame, on average.
+    /// The reflection lights that lit an 8×8 tile of the indirect target last frame, on average,
+    /// or with the article's method (`light_volumes`) the light volumes drawn.
     pub reflection_lights: u32,
+    pub light_volumes: bool,
     /// Simulation ticks run this frame.
     pub ticks: u32,
     /// The 3D view's resolution relative to the window now.
@@ -59,7 +61,8 @@ pub fn table(info: &OverlayInfo) -> String {
         let total: f64 = info.pass_times_ms.iter().map(|(_, ms)| ms).sum();
         out += &row(" total", format!("{total:.3}"));
     }
-    out += &row("GI lights", format!("{}/tile", info.reflection_lights));
+    let unit = if info.light_volumes { " volumes" } else { "/tile" };
+    out += &row("GI lights", format!("{}{unit}", info.reflection_lights));
     out += &row("ticks", info.ticks.to_string());
     out.pop(); // the last newline
     out
@@ -149,6 +152,7 @@ mod tests {
             frame_ms: 16.68,
             pass_times_ms: vec![("gbuffer".into(), 1.25), ("gi_shade".into(), 3.5)],
             reflection_lights: 1234,
+            light_volumes: false,
             ticks: 1,
             render_scale: 0.33,
             target_fps: Some(20.0),
@@ -161,6 +165,9 @@ mod tests {
         assert!(lines.contains(&" gi_shade            3.500"), "{text}");
         assert!(lines.contains(&" total               4.750"), "{text}");
         assert!(lines.contains(&"GI lights        1234/tile"), "{text}");
+        // The article's method counts the light volumes it drew.
+        let volumes = table(&OverlayInfo { reflection_lights: 2345, light_volumes: true, ..info.clone() });
+        assert!(volumes.lines().any(|l| l == "GI lights     2345 volumes"), "{volumes}");
         assert!(lines.contains(&"render scale          33 %"), "{text}");
         assert!(lines.contains(&" dynamic            20 fps"), "{text}");
         assert!(lines.iter().all(|l| l.chars().count() == lines[0].chars().count()), "aligned:\n{text}");

@@ -7,19 +7,23 @@ use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, RenderPass, Writ
 use engine::passes::CoreResources;
 use engine::wgpu;
 
-use super::gather::{irradiance_texture, lights_desc, stats_desc};
+use super::gather::{irradiance_texture, lights_desc, sink, stats_desc};
 use super::params::{finest_level, flux_size, halvings, indirect_size, lamp_view_size};
 use crate::gather::receivers_desc;
 use crate::light_volumes::{LightVolumes, TableKey, VolumeTargets};
 use crate::resources::GiResources;
 use crate::settings::Method;
 use crate::shared::GiHandle;
+use crate::sight_depth::{sight_depth_desc, SightDepth};
 
 pub struct ArticlePass {
     handle: GiHandle,
     core: CoreResources,
     gi: GiResources,
     volumes: LightVolumes,
+    sight_depth: SightDepth,
+    /// Bound in the sight depth's place without visibility.
+    sink: wgpu::TextureView,
 }
 
 pub struct ArticleIo {
@@ -32,6 +36,8 @@ pub struct ArticleIo {
     stats: Write<Buffer>,
     lights: Write<Buffer>,
     receivers: Write<Buffer>,
+    /// With visibility: the view depth the volumes march, made here.
+    sight_depth: Option<Write<Image>>,
     indirect: (u32, u32),
 }
 
@@ -43,7 +49,14 @@ impl ArticlePass {
         core: CoreResources,
         gi: GiResources,
     ) -> Self {
-        Self { volumes: LightVolumes::new(&gpu.device, globals, gpu.float32_blendable()), handle, core, gi }
+        Self {
+            volumes: LightVolumes::new(&gpu.device, globals, gpu.float32_blendable()),
+            sight_depth: SightDepth::new(&gpu.device, globals),
+            sink: sink(&gpu.device),
+            handle,
+            core,
+            gi,
+        }
     }
 }
 
@@ -71,6 +84,7 @@ impl RenderPass for ArticlePass {
             stats: d.create(gi.stats, stats_desc()),
             lights: d.create(gi.lights, lights_desc()),
             receivers: d.create(gi.receivers, receivers_desc(indirect)),
+            sight_depth: (settings.visibility == 1).then(|| d.create(gi.sight_depth, sight_depth_desc(d.size()))),
             indirect,
         })
     }
@@ -90,6 +104,20 @@ impl RenderPass for ArticlePass {
             aspect: ctx.frame.lamp.aspect,
             distribution: &ctx.frame.view.headlamp.profile.distribution,
         };
+        let mut dispatches = 0;
+        if let Some(depth) = &io.sight_depth {
+            let size = ctx.texture(depth).size();
+            let (device, position) = (&ctx.gpu.device, ctx.view(&io.position));
+            let depth_view = ctx.view(depth);
+            dispatches += self.sight_depth.record(
+                device,
+                ctx.encoder,
+                ctx.frame.globals,
+                position,
+                depth_view,
+                (size.width, size.height),
+            );
+        }
         let targets = VolumeTargets {
             params: ctx.buffer(&io.params),
             levels: ctx.buffer(&io.levels),
@@ -100,10 +128,12 @@ impl RenderPass for ArticlePass {
             irradiance: ctx.view(&io.irradiance),
             stats: ctx.buffer(&io.stats),
             lights: ctx.buffer(&io.lights),
+            sight_depth: io.sight_depth.as_ref().map(|h| ctx.view(h)),
+            sink: &self.sink,
         };
-        let (dispatches, draws) =
+        let (volume_dispatches, draws) =
             self.volumes.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, &key, io.indirect, &targets);
-        ctx.count_dispatches(dispatches);
+        ctx.count_dispatches(dispatches + volume_dispatches);
         ctx.count_draws(draws);
     }
 }

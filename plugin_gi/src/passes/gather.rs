@@ -5,19 +5,19 @@ use engine::passes::CoreResources;
 use engine::wgpu;
 
 use super::params::{fixed, flux_size, indirect_size};
-use crate::gather::{
-    cuts_desc, cuts_layout, receivers_desc, sight_depth_desc, CutsLayout, Gather, GatherTargets, SumLanes,
-};
+use crate::gather::{cuts_desc, cuts_layout, receivers_desc, CutsLayout, Gather, GatherTargets, SumLanes};
 use crate::gpu_types::{CENTRE_LIGHTS, GATHER_STATS_SIZE};
 use crate::resources::GiResources;
 use crate::settings::Method;
 use crate::shared::GiHandle;
+use crate::sight_depth::{sight_depth_desc, SightDepth};
 
 pub struct GatherPass {
     handle: GiHandle,
     core: CoreResources,
     gi: GiResources,
     gather: Gather,
+    sight_depth: SightDepth,
     /// Stand in for the bounce-only bindings (one read, one written).
     sinks: [wgpu::TextureView; 2],
 }
@@ -89,7 +89,14 @@ impl GatherPass {
         gi: GiResources,
         lanes: SumLanes,
     ) -> Self {
-        Self { gather: Gather::new(device, globals, lanes), handle, core, gi, sinks: [sink(device), sink(device)] }
+        Self {
+            gather: Gather::new(device, globals, lanes),
+            sight_depth: SightDepth::new(device, globals),
+            handle,
+            core,
+            gi,
+            sinks: [sink(device), sink(device)],
+        }
     }
 }
 
@@ -130,7 +137,7 @@ impl RenderPass for GatherPass {
         let mut dispatches = 0;
         if let Some(depth) = &io.sight_depth {
             let size = ctx.texture(depth).size();
-            dispatches += self.gather.record_sight_depth(
+            dispatches += self.sight_depth.record(
                 &ctx.gpu.device,
                 ctx.encoder,
                 ctx.frame.globals,

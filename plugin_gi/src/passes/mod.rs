@@ -30,7 +30,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("gi/gather_subgroup.wgsl", crate::gather::GATHER_SUBGROUP_SHADER),
     ("gi/gather_invocation.wgsl", crate::gather::GATHER_INVOCATION_SHADER),
     ("gi/sight.wgsl", crate::gather::SIGHT_SHADER),
-    ("gi/sight_depth.wgsl", crate::gather::SIGHT_DEPTH_SHADER),
+    ("gi/sight_depth.wgsl", crate::sight_depth::SHADER),
     ("gi/light_stream.wgsl", crate::light_volumes::STREAM_SHADER),
     ("gi/light_volumes.wgsl", crate::light_volumes::VOLUMES_SHADER),
     ("gi/sub_images.wgsl", crate::light_volumes::SUB_IMAGES_SHADER),

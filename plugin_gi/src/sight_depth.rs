@@ -1,0 +1,54 @@
+//! The view depth the visibility march reads (shaders/gi/sight_depth.wgsl): the G-buffer's,
+//! at half its size each way, R32Float, so the march's scattered loads are small ones. Made
+//! once a frame by the first bounce's gather (cuts) or the light volumes (article), as the
+//! graph image `gi.sight_depth`.
+
+use engine::graph::TextureDesc;
+use engine::wgpu;
+
+use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
+use crate::shader::module;
+
+pub const SHADER: &str = include_str!("../../shaders/gi/sight_depth.wgsl");
+
+/// The sight depth for a G-buffer of `gbuffer` texels: half its size each way, rounded up.
+pub fn sight_depth_desc(gbuffer: (u32, u32)) -> TextureDesc {
+    let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+    TextureDesc { usage, ..TextureDesc::target(wgpu::TextureFormat::R32Float) }
+        .fixed(gbuffer.0.div_ceil(2), gbuffer.1.div_ceil(2))
+}
+
+pub struct SightDepth {
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl SightDepth {
+    pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout) -> Self {
+        let layout = layout(device, "gi sight depth", &[S::Texture, S::StorageTexture(wgpu::TextureFormat::R32Float)]);
+        let module = module(device, "gi sight depth", SHADER);
+        let pipeline = compute_pipeline(device, "gi sight depth", &module, "main", &[Some(globals), Some(&layout)]);
+        Self { layout, pipeline }
+    }
+
+    /// Records the sight depth (`depth`, [`sight_depth_desc`] of `size`) from the G-buffer's
+    /// `position`; returns the number of dispatches, one.
+    pub fn record(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        globals: &wgpu::BindGroup,
+        position: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        size: (u32, u32),
+    ) -> u32 {
+        let group = bind(device, &self.layout, &[R::View(position), R::View(depth)]);
+        let mut pass = encoder
+            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi sight depth"), timestamp_writes: None });
+        pass.set_bind_group(0, globals, &[]);
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(1, &group, &[]);
+        pass.dispatch_workgroups(size.0.div_ceil(8), size.1.div_ceil(8), 1);
+        1
+    }
+}
