@@ -52,6 +52,9 @@ engine::gpu_struct! {
         pub receiver_parity: u32,
         /// The article method's interleaved sampling: its lights dealt over N×N sub-images.
         pub article_interleave: u32,
+        /// The article method's fine light volumes, in sizes of their coarse lights.
+        pub volume_reach: f32,
+        pub pad: [u32; 3],
         /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin,
         /// its forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a
         /// texel's corner rays follow from its index: the reference's footprints in its near

@@ -57,6 +57,11 @@ declare::settings! {
         /// them; the sub-images are then put back together, each receiver summing the subsets
         /// from its neighbours on its surface.
         article_interleave: u32 = 4, 1..=4, "article method: lights dealt over N×N sub-images, each light shading 1/N² of the receivers";
+        /// The article's cutoff, made one that loses nothing: a fine light's volume is the
+        /// sphere of this many sizes of the coarse light it refines, around that light; beyond
+        /// it the coarse light carries its flux. Larger is closer to every light drawn
+        /// everywhere, and slower (100 is that, in any room).
+        volume_reach: f32 = 2.5, 1.0..=100.0, "article method: a fine light's volume, in sizes of the coarse light it refines (beyond, the coarse light carries its flux)";
     }
 }
 
@@ -271,6 +276,7 @@ mod tests {
             "method",
             "light_budget",
             "article_interleave",
+            "volume_reach",
         ];
         assert_eq!(names, order);
         assert_eq!(

@@ -74,5 +74,5 @@ fn a_drifted_gi_params_fails() {
     let field = drifted.fields.iter_mut().find(|f| f.name == "view_origin").expect("a field");
     field.offset -= 12;
     let error = compare(&checked.structs["GiParams"], &drifted).expect_err("view_origin moved");
-    assert!(error.contains("GiParams.view_origin: WGSL offset 80 (size 16), Rust offset 68 (size 16)"), "{error}");
+    assert!(error.contains("GiParams.view_origin: WGSL offset 96 (size 16), Rust offset 84 (size 16)"), "{error}");
 }

@@ -59,8 +59,13 @@ struct GiParams {
     // The parity of the whole cells the receivers' grid has stepped back (bit 0 across, bit 1
     // down), which the gather's interleave pattern follows (gather.wgsl's `light_class`).
     receiver_parity: u32,
-    // The article method's interleaved sampling: N, its lights dealt over N×N sub-images.
+    // The article method's interleaved sampling: N, its lights dealt over N×N sub-images, and
+    // its fine light volumes' radius in sizes of their coarse lights (light_stream.wgsl).
     article_interleave: u32,
+    volume_reach: f32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
     // The frame the lamp view was rendered from: origin, forward axis, and right and up axes
     // scaled by lamp_tan, so a texel's corner rays follow from its index.
     view_origin: vec4f,

@@ -7,8 +7,8 @@
 // discontinuous texel's "most significant contributor").
 //
 // The table has two tiers (plugin_gi/src/distribution_table.rs). A coarse light reaches every
-// receiver. A fine light's volume is the sphere of REACH times the size of the coarse light it
-// lies in, around that light's centre; inside it the fine light adds its own irradiance less
+// receiver. A fine light's volume is the sphere of `gi.volume_reach` times the size of the
+// coarse light it lies in, around that light's centre; inside it the fine light adds its own irradiance less
 // its share (its flux) of the coarse light's, faded out over the sphere's outer half. Every
 // fine light of one coarse light shares that sphere and fade, so together they turn the
 // coarse light's irradiance into theirs inside it, and beyond it the coarse light carries
@@ -73,8 +73,6 @@ const ENTRY_COARSE: u32 = 0u;
 const ENTRY_FINE: u32 = 1u;
 // Vertices of one light volume: an icosahedron's 20 triangles (light_volumes.wgsl).
 const VOLUME_VERTICES: u32 = 60u;
-// A fine light's volume, in sizes (extents) of its coarse light.
-const REACH: f32 = 2.5;
 const VOLUME_EVERYWHERE: f32 = -1.0;
 const GROUP: u32 = 64u;
 
@@ -231,7 +229,7 @@ fn write_light(e: vec4u, j: u32, at: u32) {
         light.proxy_position = proxy.position;
         light.proxy_area = proxy.area;
         light.proxy_normal = proxy.normal;
-        light.radius = REACH * proxy.extent;
+        light.radius = params.volume_reach * proxy.extent;
     }
     if at < arrayLength(&stream) {
         stream[at] = light;

@@ -117,6 +117,8 @@ pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: u32) 
         sender_offset: grids.sender_offset,
         receiver_parity: grids.receiver_parity,
         article_interleave: settings.article_interleave,
+        volume_reach: settings.volume_reach,
+        pad: [0; 3],
         view_origin: lamp.position.extend(1.0).to_array(),
         view_forward: (lamp.rotation * Vec3::NEG_Z).extend(0.0).to_array(),
         view_right: (lamp.rotation * Vec3::X * tan_y * lamp.aspect).extend(0.0).to_array(),

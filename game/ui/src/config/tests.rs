@@ -50,6 +50,7 @@ fn changed() -> Config {
         method: plugin_gi::Method::Article,
         light_budget: 2048,
         article_interleave: 2,
+        volume_reach: 4.0,
     };
     Config {
         mouse_sensitivity: 1.37,
