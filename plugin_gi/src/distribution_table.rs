@@ -129,19 +129,13 @@ impl DistributionTable {
     }
 
     /// The GPU form (light_stream.wgsl's `entries`): the coarse slots, then the fine ones,
-    /// each dealt into one of `subsets` by its place along the Z-order curve (neighbours go to
-    /// different subsets, so each subset's lights spread over the whole view).
-    pub fn entries(&self, subsets: u32) -> Vec<[u32; 4]> {
-        let subsets = subsets.max(1);
+    /// each tier along a Z-order curve over the base.
+    pub fn entries(&self) -> Vec<[u32; 4]> {
         let pack = |s: &Slot| s.x | s.y << 16;
-        let coarse = self
-            .coarse
-            .iter()
-            .enumerate()
-            .map(|(i, s)| [s.level | ENTRY_COARSE << 8 | (i as u32 % subsets) << 16, pack(s), 0, 0]);
-        let fine = self.fine.iter().enumerate().map(|(i, (s, c))| {
+        let coarse = self.coarse.iter().map(|s| [s.level | ENTRY_COARSE << 8, pack(s), 0, 0]);
+        let fine = self.fine.iter().map(|(s, c)| {
             let up = &self.coarse[*c as usize];
-            [s.level | ENTRY_FINE << 8 | (i as u32 % subsets) << 16, pack(s), up.level, pack(up)]
+            [s.level | ENTRY_FINE << 8, pack(s), up.level, pack(up)]
         });
         coarse.chain(fine).collect()
     }
@@ -294,22 +288,18 @@ mod tests {
     }
 
     #[test]
-    fn entries_deal_neighbours_into_different_subsets() {
+    fn entries_list_the_coarse_tier_then_the_fine_with_their_coarse_slots() {
         let tree = Quadtree::new(64, 48);
         let table = DistributionTable::build(&tree, &uniform(64, 48), 0, 300, 40);
         assert_eq!(table, DistributionTable::build(&tree, &uniform(64, 48), 0, 300, 40), "deterministic");
-        let entries = table.entries(16);
+        let entries = table.entries();
         assert_eq!(entries.len(), table.coarse.len() + table.fine.len());
-        let subset = |e: &[u32; 4]| e[0] >> 16;
         let kind = |e: &[u32; 4]| (e[0] >> 8) & 0xff;
+        let slot = |level: u32, xy: u32| Slot { level, x: xy & 0xffff, y: xy >> 16 };
         assert!(entries[..table.coarse.len()].iter().all(|e| kind(e) == ENTRY_COARSE));
-        assert!(entries[table.coarse.len()..].iter().all(|e| kind(e) == ENTRY_FINE));
-        // Every subset gets its share of the fine lights, and Z-order neighbours differ.
-        let fine = &entries[table.coarse.len()..];
-        for s in 0..16 {
-            let n = fine.iter().filter(|e| subset(e) == s).count();
-            assert!(n.abs_diff(fine.len() / 16) <= 1, "subset {s} has {n} of {}", fine.len());
+        for (e, (s, c)) in entries[table.coarse.len()..].iter().zip(&table.fine) {
+            assert_eq!((kind(e), slot(e[0] & 0xff, e[1])), (ENTRY_FINE, *s));
+            assert_eq!(slot(e[2], e[3]), table.coarse[*c as usize]);
         }
-        assert!(fine.windows(2).all(|w| subset(&w[0]) != subset(&w[1])));
     }
 }

@@ -54,7 +54,11 @@ engine::gpu_struct! {
         pub article_interleave: u32,
         /// The article method's fine light volumes, in sizes of their coarse lights.
         pub volume_reach: f32,
-        pub pad: [u32; 3],
+        /// The whole cells the receivers' grid has stepped back, mod 12 each way (x | y << 16).
+        pub receiver_steps: u32,
+        /// The periods the senders' grid has stepped back, + 2048 each way (x | y << 16).
+        pub sender_steps: u32,
+        pub pad: u32,
         /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin,
         /// its forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a
         /// texel's corner rays follow from its index: the reference's footprints in its near
@@ -173,6 +177,7 @@ pub const GPU_ONLY: &[(&str, &str)] = &[
     ("DrawArgs", "written by the GPU, read as wgpu's DrawIndirectArgs"),
     ("Place", "a function's value, never in a buffer"),
     ("Receiver", "a function's value, never in a buffer"),
+    ("SubPixel", "a function's value, never in a buffer"),
     ("VolumeOut", "stage IO between vertex and fragment shaders"),
     ("Node", "the pyramid's nodes are written and read by the GPU only (NODE_SIZE sizes them)"),
     ("RetryList", "written and read by the GPU only (the CPU clears RETRY_HEADER)"),

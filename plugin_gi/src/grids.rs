@@ -25,6 +25,14 @@ pub(crate) struct Grids {
     /// The parity of the whole cells the receivers' grid has stepped back (bit 0 across, bit 1
     /// down): the gather's 2×2 interleave pattern follows it, so a world point keeps its class.
     pub receiver_parity: u32,
+    /// The same steps mod 12 (a multiple of every interleave side, 1 to 4), across and down:
+    /// the article's N×N sub-images follow them.
+    pub receiver_steps: [u32; 2],
+    /// The whole periods (SENDER_PAD blocks) the senders' grid has stepped back, + 2048
+    /// (a turn moves the picture by a few thousand pixels at most), across and down: each
+    /// moves the content of the flux G-buffer SENDER_PAD blocks on, and the article's lights
+    /// keep their subsets by it.
+    pub sender_steps: [u32; 2],
 }
 
 impl Grids {
@@ -50,6 +58,8 @@ impl Grids {
             receiver_offset: [(cells(0).rem_euclid(1.0) - 0.5) as f32, (cells(1).rem_euclid(1.0) - 0.5) as f32],
             sender_offset: [senders(0), senders(1)],
             receiver_parity: parity(0) | (parity(1) << 1),
+            receiver_steps: [0, 1].map(|i| cells(i).floor().rem_euclid(12.0) as u32),
+            sender_steps: [0, 1].map(|i| if block > 1 { ((moved[i] / period).floor() + 2048.0) as u32 } else { 2048 }),
         }
     }
 }
@@ -84,6 +94,9 @@ mod tests {
         let further = Grids::of(&turned(3.0, 0.0), SIZE, LOW, 4);
         assert!((further.receiver_offset[0] + 0.25).abs() < 1e-4, "{further:?}");
         assert_eq!(further.receiver_parity, 1);
+        assert_eq!(further.receiver_steps, [1, 0]);
+        // Turned right by as much: a cell the other way, 11 mod 12.
+        assert_eq!(Grids::of(&turned(-3.0, 0.0), SIZE, LOW, 4).receiver_steps, [11, 0]);
         // Looking up moves the picture down, rows likewise.
         let up = Grids::of(&turned(0.0, 1.0), SIZE, LOW, 4);
         assert!((up.receiver_offset[1] - 0.25).abs() < 1e-4, "{up:?}");
@@ -91,6 +104,7 @@ mod tests {
         // A whole period of blocks (32 pixels) later both grids are where they were after one
         // pixel.
         let period = Grids::of(&turned(33.0, 0.0), SIZE, LOW, 4);
+        assert_eq!((level.sender_steps, period.sender_steps), ([2048, 2048], [2049, 2048]));
         assert!((period.sender_offset[0] - 31.0).abs() < 1e-3, "{period:?}");
         assert!((period.receiver_offset[0] - 0.25).abs() < 1e-4, "{period:?}");
         assert_eq!(period.receiver_parity, 0);

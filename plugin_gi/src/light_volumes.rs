@@ -42,8 +42,6 @@ pub struct TableKey<'a> {
     /// The pyramid's finest level built (GiParams::min_level): no slot is finer.
     pub floor: u32,
     pub budget: u32,
-    /// N of the N×N sub-images.
-    pub interleave: u32,
     /// The lamp frustum's vertical field of view and aspect, and its distribution.
     pub fov_y: f32,
     pub aspect: f32,
@@ -228,7 +226,7 @@ impl LightVolumes {
         };
         if !self.table.as_ref().is_some_and(same) {
             log::info!("gi: distribution table of {} slots over {:?}", key.budget, key.base);
-            let entries = key.table().entries(key.interleave * key.interleave);
+            let entries = key.table().entries();
             let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("gi distribution table"),
                 contents: bytemuck::cast_slice(&entries),
@@ -241,7 +239,8 @@ impl LightVolumes {
     }
 
     /// Records the light volumes of the pyramid in `t` for the table of `key`, over an
-    /// indirect target of `indirect` receivers; returns (dispatches, draws): (3, 1).
+    /// indirect target of `indirect` receivers in N×N sub-images (N = `interleave`); returns
+    /// (dispatches, draws): (3, 1).
     pub fn record(
         &mut self,
         device: &wgpu::Device,
@@ -249,11 +248,13 @@ impl LightVolumes {
         globals: &wgpu::BindGroup,
         key: &TableKey,
         indirect: (u32, u32),
+        interleave: u32,
         t: &VolumeTargets<'_>,
     ) -> (u32, u32) {
         let entries = self.table(device, key).size() / 16;
-        let n = key.interleave.max(1);
-        let target = (indirect.0.div_ceil(n) * n, indirect.1.div_ceil(n) * n);
+        // N sub-images each way, each ⌈size / N⌉ + 1 (sub_image_layout.wgsl).
+        let n = interleave.max(1);
+        let target = ((indirect.0.div_ceil(n) + 1) * n, (indirect.1.div_ceil(n) + 1) * n);
         let scratch_key = ScratchKey { entries, target };
         if self.scratch.as_ref().is_none_or(|(k, _)| *k != scratch_key) {
             let texture = |label, format, usage| {

@@ -63,9 +63,13 @@ struct GiParams {
     // its fine light volumes' radius in sizes of their coarse lights (light_stream.wgsl).
     article_interleave: u32,
     volume_reach: f32,
-    pad0: u32,
-    pad1: u32,
-    pad2: u32,
+    // The whole cells the receivers' grid has stepped back, mod 12 each way (x | y << 16): the
+    // article's sub-images follow them (sub_image_layout.wgsl).
+    receiver_steps: u32,
+    // The periods (SENDER_PAD blocks) the senders' grid has stepped back, + 2048, each way
+    // (x | y << 16): the article's lights keep their subsets by them (light_stream.wgsl).
+    sender_steps: u32,
+    pad: u32,
     // The frame the lamp view was rendered from: origin, forward axis, and right and up axes
     // scaled by lamp_tan, so a texel's corner rays follow from its index.
     view_origin: vec4f,

@@ -221,8 +221,7 @@ fn write_light(e: vec4u, j: u32, at: u32) {
     light.area = node.area;
     light.normal = node.normal;
     light.flux = node.flux;
-    let subsets = max(params_subsets, 1u);
-    light.subset = ((e.x >> 16u) + j) % subsets;
+    light.subset = light_subset(p, j % 2u);
     light.radius = VOLUME_EVERYWHERE;
     if is_fine(e) {
         let proxy = node_at(proxy_of(unpack_place(e.z, e.w), p));
@@ -236,14 +235,32 @@ fn write_light(e: vec4u, j: u32, at: u32) {
     }
 }
 
-// The number of sub-images (params.article_interleave²), set by `main`.
-var<private> params_subsets: u32;
+// The sub-image a light is drawn into, by its place in the world, so a light keeps its
+// subset as the view turns: the node's texel with the senders' grid's steps taken out (each
+// step moves the flux G-buffer's content SENDER_PAD = 8 base texels on, a whole number of
+// nodes up to level 3, whose grouping the steps keep). Each N×N block of nodes of a level
+// holds every subset once (stratified: a subset's lights spread over the view), in an order
+// of its own (a hash of the block picks one of the affine orders a·i + b mod N², a prime to
+// 2 and 3), so no subset keeps to a lattice that the receivers' sub-images could match.
+// A block drawn as its halves gives its second side the subset half-way round.
+fn light_subset(p: Place, side: u32) -> u32 {
+    let steps = vec2i(i32(params.sender_steps & 0xffffu), i32(params.sender_steps >> 16u)) - 2048;
+    // (Made positive before the modulo.)
+    let world = bitcast<vec2u>(vec2i(p.t) - ((steps * 8) >> vec2u(p.level)) + vec2i(1 << 20u));
+    let n = max(params.article_interleave, 1u);
+    let block = world / n;
+    var h = block.x * 0x9e3779b1u ^ (block.y + 0x7f4a7c15u) * 0x85ebca6bu ^ p.level * 0xc2b2ae35u;
+    h = (h ^ (h >> 15u)) * 0x2c1b3c6du;
+    h ^= h >> 13u;
+    let a = array<u32, 5>(1u, 5u, 7u, 11u, 13u)[h % 5u];
+    let i = world.x % n + n * (world.y % n);
+    return (a * i + (h >> 8u) + side * (n * n / 2u)) % (n * n);
+}
 
 @group(1) @binding(7) var<uniform> params: GiParams;
 
 @compute @workgroup_size(64)
 fn main(@builtin(local_invocation_index) i: u32) {
-    params_subsets = params.article_interleave * params.article_interleave;
     if i == 0u {
         placed = 0u;
         shown_count = 0u;

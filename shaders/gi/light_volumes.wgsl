@@ -14,6 +14,7 @@
 // `gi.visibility` each fragment marches to its light (visibility.wgsl).
 #include "common.wgsl"
 #include "gi_common.wgsl"
+#include "sub_image_layout.wgsl"
 
 struct VolumeLight {
     position: vec3f,
@@ -76,27 +77,18 @@ struct VolumeOut {
     @location(6) @interpolate(flat) light_clip: vec4f,
 };
 
-// The sub-images' side (N) and size in receivers.
-fn sub_side() -> u32 {
-    return max(params.article_interleave, 1u);
-}
-
-fn sub_size() -> vec2u {
-    return (params.indirect_size + sub_side() - 1u) / sub_side();
-}
-
 // A point of the camera's clip space, placed in sub-image `s` of the target (the sub-images
-// side by side, N·sub_size each way) where the receivers it falls among are: receiver q
-// (q mod N = the tile) is evaluated at view pixel (q + ½ + receiver_offset) of the indirect
-// target and shaded at pixel q / N of its sub-image. Linear in clip space, so it keeps
-// perspective.
+// side by side, N·sub_size each way) where the receivers it falls among are: receiver q is
+// evaluated at view pixel (q + ½ + receiver_offset) of the indirect target and shaded at
+// pixel (q + shift) / N of its sub-image (sub_image_layout.wgsl). Linear in clip space, so it
+// keeps perspective.
 fn into_sub_image(clip: vec4f, s: u32) -> vec4f {
     let n = f32(sub_side());
     let tile = vec2f(f32(s % sub_side()), f32(s / sub_side()));
     let size = vec2f(sub_size());
     let r = vec2f(params.indirect_size);
     // The sub-image pixel (target pixels) of the view's centre, and its pixels per NDC unit.
-    let centre = tile * size + (r * 0.5 - params.receiver_offset - tile - 0.5) / n + 0.5;
+    let centre = tile * size + (r * 0.5 - params.receiver_offset + vec2f(sub_shift()) - tile - 0.5) / n + 0.5;
     let a = r / (n * n * size);
     let b = 2.0 * centre / (n * size);
     let x = clip.x * a.x + clip.w * (b.x - 1.0);
@@ -158,14 +150,11 @@ fn fade(distance: f32, radius: f32) -> f32 {
 fn fs_main(in: VolumeOut) -> @location(0) vec4f {
     let light = VolumeLight(in.position_area.xyz, in.position_area.w, in.normal_radius.xyz, in.normal_radius.w,
         in.flux, in.subset, in.proxy.xyz, in.proxy.w, in.proxy_normal, 0u);
-    let n = sub_side();
     let p = vec2u(in.clip.xy);
-    let size = sub_size();
-    let tile = p / size;
     // Only the light's own sub-image (a volume spills into its neighbours' at their edges),
     // and only receivers of the view.
-    let q = (p % size) * n + tile;
-    if tile.y * n + tile.x != light.subset || any(tile >= vec2u(n)) || any(q >= params.indirect_size) {
+    let at = sub_pixel(p);
+    if at.subset != light.subset || at.q.x < 0 {
         discard;
     }
     let r = textureLoad(receivers, vec2i(p), 0);

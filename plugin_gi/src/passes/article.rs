@@ -99,7 +99,6 @@ impl RenderPass for ArticlePass {
             block: 1 << halvings(&settings, size, attached),
             floor: finest_level(&settings, size, attached),
             budget: settings.light_budget,
-            interleave: settings.article_interleave,
             fov_y: ctx.frame.lamp.fov_y,
             aspect: ctx.frame.lamp.aspect,
             distribution: &ctx.frame.view.headlamp.profile.distribution,
@@ -131,8 +130,15 @@ impl RenderPass for ArticlePass {
             sight_depth: io.sight_depth.as_ref().map(|h| ctx.view(h)),
             sink: &self.sink,
         };
-        let (volume_dispatches, draws) =
-            self.volumes.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, &key, io.indirect, &targets);
+        let (volume_dispatches, draws) = self.volumes.record(
+            &ctx.gpu.device,
+            ctx.encoder,
+            ctx.frame.globals,
+            &key,
+            io.indirect,
+            settings.article_interleave,
+            &targets,
+        );
         ctx.count_dispatches(dispatches + volume_dispatches);
         ctx.count_draws(draws);
     }
