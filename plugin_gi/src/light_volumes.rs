@@ -78,6 +78,9 @@ pub struct VolumeTargets<'a> {
     /// The gather's counters and the `lights` view's lights (the fine tier's).
     pub stats: &'a wgpu::Buffer,
     pub lights: &'a wgpu::Buffer,
+    /// The indirect target's receivers, and N of the N×N sub-images they are split into.
+    pub indirect: (u32, u32),
+    pub interleave: u32,
 }
 
 pub struct LightVolumes {
@@ -238,8 +241,7 @@ impl LightVolumes {
         &self.table.as_ref().expect("made above").2
     }
 
-    /// Records the light volumes of the pyramid in `t` for the table of `key`, over an
-    /// indirect target of `indirect` receivers in N×N sub-images (N = `interleave`); returns
+    /// Records the light volumes of the pyramid in `t` for the table of `key`; returns
     /// (dispatches, draws): (3, 1).
     pub fn record(
         &mut self,
@@ -247,13 +249,11 @@ impl LightVolumes {
         encoder: &mut wgpu::CommandEncoder,
         globals: &wgpu::BindGroup,
         key: &TableKey,
-        indirect: (u32, u32),
-        interleave: u32,
         t: &VolumeTargets<'_>,
     ) -> (u32, u32) {
         let entries = self.table(device, key).size() / 16;
         // N sub-images each way, each ⌈size / N⌉ + 1 (sub_image_layout.wgsl).
-        let n = interleave.max(1);
+        let (indirect, n) = (t.indirect, t.interleave.max(1));
         let target = ((indirect.0.div_ceil(n) + 1) * n, (indirect.1.div_ceil(n) + 1) * n);
         let scratch_key = ScratchKey { entries, target };
         if self.scratch.as_ref().is_none_or(|(k, _)| *k != scratch_key) {

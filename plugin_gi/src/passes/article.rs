@@ -129,16 +129,11 @@ impl RenderPass for ArticlePass {
             lights: ctx.buffer(&io.lights),
             sight_depth: io.sight_depth.as_ref().map(|h| ctx.view(h)),
             sink: &self.sink,
+            indirect: io.indirect,
+            interleave: settings.article_interleave,
         };
-        let (volume_dispatches, draws) = self.volumes.record(
-            &ctx.gpu.device,
-            ctx.encoder,
-            ctx.frame.globals,
-            &key,
-            io.indirect,
-            settings.article_interleave,
-            &targets,
-        );
+        let (volume_dispatches, draws) =
+            self.volumes.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, &key, &targets);
         ctx.count_dispatches(dispatches + volume_dispatches);
         ctx.count_draws(draws);
     }
