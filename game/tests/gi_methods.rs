@@ -11,16 +11,15 @@
 mod common;
 
 use common::cornell::{cornell_box, view, FOV_Y};
+use common::settled::settled_indirect;
 use engine::frame::ViewState;
 use engine::glam::Vec3;
 use engine::gpu::Gpu;
-use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
-use engine::renderer::Renderer;
 use engine::scene::Scene;
 use engine::start_view::{initial_view, ViewOverrides};
 use game::world_reference::WorldReference;
 use gi_reference::DEFAULT_MAX_EDGE;
-use plugin_gi::metrics::{block_error, energy, shrink};
+use plugin_gi::metrics::{block_error, energy};
 use plugin_gi::{GiSettings, GiStats, Method};
 
 /// The frames the GI renders, and the reference's receivers: a quarter each way.
@@ -52,20 +51,7 @@ fn measured() -> [(&'static str, GiSettings, (f64, f64)); 3] {
 
 /// The GI's indirect light, shrunk to the reference's receivers, and its calls.
 fn indirect(gpu: &Gpu, scene: &Scene, view: &ViewState, settings: GiSettings) -> (image::Rgba32FImage, GiStats) {
-    let (plugins, _) = game::plugins(settings);
-    let mut renderer = Renderer::new(gpu, scene, plugins).unwrap();
-    renderer.set_view("indirect").unwrap();
-    // The temporal pass starts from nothing: a few frames settle it.
-    let target = HeadlessTarget::new(gpu, FRAME.0, FRAME.1, ImageKind::Linear);
-    let mut last = None;
-    for _ in 0..4 {
-        last = Some(target.render(gpu, &mut renderer, view).unwrap());
-    }
-    let stats = GiStats::of(&renderer);
-    match last.unwrap() {
-        RenderedImage::Linear(img) => (shrink(&img, FRAME.0 / REFERENCE.0), stats),
-        RenderedImage::Display(_) => unreachable!("a linear target"),
-    }
+    settled_indirect(gpu, scene, view, settings, FRAME, FRAME.0 / REFERENCE.0)
 }
 
 /// Measures every setting on each view; returns what missed its goal.

@@ -9,16 +9,15 @@
 mod common;
 
 use common::cornell::{tall_block_box, view};
+use common::settled::settled_indirect;
 use engine::frame::ViewState;
 use engine::glam::Vec3;
 use engine::gpu::Gpu;
-use engine::headless::{HeadlessTarget, ImageKind, RenderedImage};
-use engine::renderer::Renderer;
 use engine::scene::Scene;
 use engine::start_view::{initial_view, ViewOverrides};
 use game::world_reference::WorldReference;
 use gi_reference::DEFAULT_MAX_EDGE;
-use plugin_gi::metrics::{block_error_masked_sized, block_error_sized, block_mask, energy, energy_masked, shrink};
+use plugin_gi::metrics::{block_error_masked_sized, block_error_sized, block_mask, energy, energy_masked};
 use plugin_gi::{GiSettings, Method};
 
 /// The frames the GI renders, and the reference's receivers: a quarter each way.
@@ -26,19 +25,7 @@ const FRAME: (u32, u32) = (640, 360);
 const REFERENCE: (u32, u32) = (160, 90);
 
 fn indirect(gpu: &Gpu, scene: &Scene, view: &ViewState, settings: GiSettings) -> image::Rgba32FImage {
-    let (plugins, _) = game::plugins(settings);
-    let mut renderer = Renderer::new(gpu, scene, plugins).unwrap();
-    renderer.set_view("indirect").unwrap();
-    // The temporal pass starts from nothing: a few frames settle it.
-    let target = HeadlessTarget::new(gpu, FRAME.0, FRAME.1, ImageKind::Linear);
-    let mut last = None;
-    for _ in 0..4 {
-        last = Some(target.render(gpu, &mut renderer, view).unwrap());
-    }
-    match last.unwrap() {
-        RenderedImage::Linear(img) => shrink(&img, FRAME.0 / REFERENCE.0),
-        RenderedImage::Display(_) => unreachable!("a linear target"),
-    }
+    settled_indirect(gpu, scene, view, settings, FRAME, FRAME.0 / REFERENCE.0).0
 }
 
 fn visible_reference(gpu: &Gpu, scene: &Scene, view: &ViewState) -> image::Rgba32FImage {

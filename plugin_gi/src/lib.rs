@@ -4,8 +4,10 @@
 //! merged up a quadtree with the article's filter into a pyramid of reflection lights of every
 //! size; each 8×8 tile of a reduced-resolution irradiance target takes its own cut through the
 //! pyramid (fine lights near it, coarse ones far away) and gathers their irradiance, which is
-//! upsampled with geometry-aware weights, turned into radiance and added to the frame. It
-//! depends on the engine's public API only and registers everything in [`GiPlugin::build`].
+//! upsampled with geometry-aware weights, turned into radiance and added to the frame. With
+//! `gi.method = article` the article's own pipeline makes that irradiance instead: its
+//! distribution table's lights of the same pyramid, drawn as light volumes (`light_volumes.rs`).
+//! It depends on the engine's public API only and registers everything in [`GiPlugin::build`].
 
 mod bindings;
 pub mod distribution_table;

@@ -22,19 +22,6 @@
 #include "gi_common.wgsl"
 #include "receivers.wgsl"
 
-struct Stats {
-    // Draw arguments of the `lights` view: the cut of the tile at the centre of the view.
-    vertex_count: u32,
-    instance_count: u32,
-    first_vertex: u32,
-    first_instance: u32,
-    // Σ cut sizes over the tiles, the tiles with receivers, the tiles whose cut filled up.
-    lights: atomic<u32>,
-    tiles: atomic<u32>,
-    full: atomic<u32>,
-    pad: u32,
-};
-
 @group(1) @binding(0) var<uniform> params: GiParams;
 @group(1) @binding(1) var<uniform> table: Levels;
 @group(1) @binding(2) var<storage, read> nodes: array<Node>;

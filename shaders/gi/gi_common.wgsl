@@ -30,6 +30,40 @@ struct ReflectionLight {
     faces_away: f32,
 };
 
+// The gather's counters (cuts.wgsl fills them; with `gi.method = article`, light_stream.wgsl):
+// first the `lights` view's draw arguments (the cut of the tile at the centre of the view; the
+// article's fine lights), then Σ cut sizes over the tiles, the tiles with receivers, the tiles
+// whose cut filled up (the article's: the volumes drawn, the table's slots, 0).
+struct Stats {
+    vertex_count: u32,
+    instance_count: u32,
+    first_vertex: u32,
+    first_instance: u32,
+    lights: atomic<u32>,
+    tiles: atomic<u32>,
+    full: atomic<u32>,
+    pad: u32,
+};
+
+// The article method's instance stream (light_stream.wgsl writes it, light_volumes.wgsl
+// draws it): one light volume each.
+struct VolumeLight {
+    position: vec3f,
+    area: f32,
+    normal: vec3f,
+    // The volume's radius about `proxy_position` (m); < 0 for a coarse light, which covers
+    // every receiver of its sub-image.
+    radius: f32,
+    flux: vec3f,
+    // The sub-image it is drawn into (interleaved sampling).
+    subset: u32,
+    // The coarse light it lies in (a fine light's): whose share it replaces.
+    proxy_position: vec3f,
+    proxy_area: f32,
+    proxy_normal: vec3f,
+    pad: u32,
+};
+
 struct GiParams {
     // Size of the flux G-buffer (level 0) and of the indirect (irradiance) target.
     flux_size: vec2u,

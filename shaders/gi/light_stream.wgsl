@@ -27,35 +27,6 @@ struct DrawArgs {
     first_instance: u32,
 };
 
-// The instance stream: one light volume each (light_volumes.wgsl).
-struct VolumeLight {
-    position: vec3f,
-    area: f32,
-    normal: vec3f,
-    // The volume's radius about `proxy_position` (m); VOLUME_EVERYWHERE for a coarse light.
-    radius: f32,
-    flux: vec3f,
-    // The sub-image it is drawn into (interleaved sampling).
-    subset: u32,
-    // The coarse light it lies in (a fine light's): whose share it replaces.
-    proxy_position: vec3f,
-    proxy_area: f32,
-    proxy_normal: vec3f,
-    pad: u32,
-};
-
-// The gather's counters (as in cuts.wgsl), which the `lights` view and readback read: the
-// dots' draw arguments (the fine tier's lights), then the volumes drawn, the table's slots, 0.
-struct Stats {
-    vertex_count: u32,
-    instance_count: u32,
-    first_vertex: u32,
-    first_instance: u32,
-    lights: atomic<u32>,
-    tiles: atomic<u32>,
-    full: atomic<u32>,
-    pad: u32,
-};
 
 @group(1) @binding(0) var<uniform> table: Levels;
 @group(1) @binding(1) var<storage, read> nodes: array<Node>;
@@ -77,8 +48,22 @@ const VOLUME_EVERYWHERE: f32 = -1.0;
 const GROUP: u32 = 64u;
 
 var<workgroup> counts: array<u32, GROUP>;
-var<workgroup> placed: u32;
-var<workgroup> shown_count: u32;
+
+// Over the workgroup's invocations (each passing its own `count`): the sum of the counts of
+// those before this one, and of all. Every invocation calls it, in step.
+fn exclusive_prefix(i: u32, count: u32) -> vec2u {
+    workgroupBarrier();
+    counts[i] = count;
+    // Inclusive prefix sum (Hillis–Steele).
+    for (var step = 1u; step < GROUP; step *= 2u) {
+        workgroupBarrier();
+        let add = select(0u, counts[i - step], i >= step);
+        workgroupBarrier();
+        counts[i] += add;
+    }
+    workgroupBarrier();
+    return vec2u(counts[i] - count, counts[GROUP - 1u]);
+}
 
 struct Place {
     level: u32,
@@ -261,13 +246,10 @@ fn light_subset(p: Place, side: u32) -> u32 {
 
 @compute @workgroup_size(64)
 fn main(@builtin(local_invocation_index) i: u32) {
-    if i == 0u {
-        placed = 0u;
-        shown_count = 0u;
-    }
     let total = arrayLength(&entries);
+    // The instance stream, in the table's order.
+    var placed = 0u;
     for (var first = 0u; first < total; first += GROUP) {
-        workgroupBarrier();
         let index = first + i;
         var e = vec4u(0u);
         var mask = 0u;
@@ -275,39 +257,25 @@ fn main(@builtin(local_invocation_index) i: u32) {
             e = entries[index];
             mask = drawn_mask(e);
         }
-        counts[i] = countOneBits(mask);
-        // Inclusive prefix sum over the workgroup (Hillis–Steele).
-        for (var step = 1u; step < GROUP; step *= 2u) {
-            workgroupBarrier();
-            let add = select(0u, counts[i - step], i >= step);
-            workgroupBarrier();
-            counts[i] += add;
-        }
-        workgroupBarrier();
-        var at = placed + counts[i] - countOneBits(mask);
+        let prefix = exclusive_prefix(i, countOneBits(mask));
+        var at = placed + prefix.x;
         for (var j = 0u; j < 32u; j++) {
             if (mask & (1u << j)) != 0u {
                 write_light(e, j, at);
                 at++;
             }
         }
-        workgroupBarrier();
-        if i == GROUP - 1u {
-            placed += counts[i];
-        }
+        placed += prefix.y;
     }
-    workgroupBarrier();
     if i == 0u {
         args = DrawArgs(VOLUME_VERTICES, min(placed, arrayLength(&stream)), 0u, 0u);
         atomicStore(&stats.lights, min(placed, arrayLength(&stream)));
         atomicStore(&stats.tiles, total);
         atomicStore(&stats.full, 0u);
-
     }
     // The fine tier as lights for the `lights` view, in the table's order.
-    workgroupBarrier();
+    var shown_count = 0u;
     for (var first = 0u; first < total; first += GROUP) {
-        workgroupBarrier();
         let index = first + i;
         var count = 0u;
         var e = vec4u(0u);
@@ -319,15 +287,8 @@ fn main(@builtin(local_invocation_index) i: u32) {
                 }
             }
         }
-        counts[i] = count;
-        for (var step = 1u; step < GROUP; step *= 2u) {
-            workgroupBarrier();
-            let add = select(0u, counts[i - step], i >= step);
-            workgroupBarrier();
-            counts[i] += add;
-        }
-        workgroupBarrier();
-        var at = shown_count + counts[i] - count;
+        let prefix = exclusive_prefix(i, count);
+        var at = shown_count + prefix.x;
         for (var j = 0u; j < 32u; j++) {
             if count > 0u && is_drawn(unpack_place(e.x, e.y), j) {
                 let p = place_of(unpack_place(e.x, e.y), j / 2u);
@@ -338,12 +299,8 @@ fn main(@builtin(local_invocation_index) i: u32) {
                 at++;
             }
         }
-        workgroupBarrier();
-        if i == GROUP - 1u {
-            shown_count += counts[i];
-        }
+        shown_count += prefix.y;
     }
-    workgroupBarrier();
     if i == 0u {
         stats.vertex_count = 6u;
         stats.instance_count = min(shown_count, arrayLength(&shown));

@@ -16,19 +16,6 @@
 #include "gi_common.wgsl"
 #include "sub_image_layout.wgsl"
 
-struct VolumeLight {
-    position: vec3f,
-    area: f32,
-    normal: vec3f,
-    radius: f32,
-    flux: vec3f,
-    subset: u32,
-    proxy_position: vec3f,
-    proxy_area: f32,
-    proxy_normal: vec3f,
-    pad: u32,
-};
-
 @group(1) @binding(0) var<uniform> params: GiParams;
 @group(1) @binding(1) var<storage, read> stream: array<VolumeLight>;
 // Each receiver's position (as bits) and packed normal (NO_NORMAL: no surface), where its

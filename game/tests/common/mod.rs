@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod cornell;
+pub mod settled;
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
