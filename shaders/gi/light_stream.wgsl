@@ -30,8 +30,8 @@ struct DrawArgs {
 
 @group(1) @binding(0) var<uniform> table: Levels;
 @group(1) @binding(1) var<storage, read> nodes: array<Node>;
-// Per entry: x = level | kind << 8 | subset << 16, y = its texel (x | y << 16), and for a
-// fine entry z, w the same of the coarse slot it lies in.
+// Per entry: x = level | kind << 8, y = its texel (x | y << 16), and for a fine entry z, w
+// the same of the coarse slot it lies in.
 @group(1) @binding(2) var<storage, read> entries: array<vec4u>;
 @group(1) @binding(3) var<storage, read_write> stream: array<VolumeLight>;
 @group(1) @binding(4) var<storage, read_write> args: DrawArgs;
@@ -83,8 +83,12 @@ fn in_level(p: Place) -> bool {
 // The k-th of the up to 16 places a slot is drawn from (k = child * 4 + grandchild), and
 // whether it is one: the slot itself where it is coherent or of the finest level built
 // (k = 0), else its coherent children, else their children.
+fn child_place(slot: Place, k: u32) -> Place {
+    return Place(slot.level - 1u, slot.t * 2u + vec2u((k / 4u) & 1u, k / 8u));
+}
+
 fn drawn_place(slot: Place, k: u32) -> Place {
-    let child = Place(slot.level - 1u, slot.t * 2u + vec2u((k / 4u) & 1u, k / 8u));
+    let child = child_place(slot, k);
     return Place(slot.level - 2u, child.t * 2u + vec2u(k & 1u, (k / 2u) & 1u));
 }
 
@@ -100,7 +104,7 @@ fn is_drawn_place(slot: Place, k: u32) -> bool {
     if whole(slot) {
         return k == 0u;
     }
-    let child = Place(slot.level - 1u, slot.t * 2u + vec2u((k / 4u) & 1u, k / 8u));
+    let child = child_place(slot, k);
     if !in_level(child) || luminance(node_at(child).flux) <= 0.0 {
         return false;
     }
@@ -116,7 +120,7 @@ fn place_of(slot: Place, k: u32) -> Place {
     if whole(slot) {
         return slot;
     }
-    let child = Place(slot.level - 1u, slot.t * 2u + vec2u((k / 4u) & 1u, k / 8u));
+    let child = child_place(slot, k);
     if whole(child) {
         return child;
     }
@@ -177,20 +181,22 @@ fn is_fine(e: vec4u) -> bool {
     return ((e.x >> 8u) & 0xffu) == ENTRY_FINE;
 }
 
-// The lights of entry `e` that are drawn: a fine light drawn the same as its coarse one (the
-// two tiers split alike there) adds nothing.
-fn drawn_mask(e: vec4u) -> u32 {
+// Entry `e`'s lights (bit j: see is_drawn): x, those the slot has; y, those drawn as light
+// volumes (a fine light drawn the same as its coarse one, the two tiers splitting alike
+// there, adds nothing).
+fn light_masks(e: vec4u) -> vec2u {
     let slot = unpack_place(e.x, e.y);
-    var mask = 0u;
+    var masks = vec2u(0u);
     for (var j = 0u; j < 32u; j++) {
         if is_drawn(slot, j) {
+            masks.x |= 1u << j;
             let p = place_of(slot, j / 2u);
             if !(is_fine(e) && same(p, proxy_of(unpack_place(e.z, e.w), p))) {
-                mask |= 1u << j;
+                masks.y |= 1u << j;
             }
         }
     }
-    return mask;
+    return masks;
 }
 
 fn same(a: Place, b: Place) -> bool {
@@ -247,61 +253,46 @@ fn light_subset(p: Place, side: u32) -> u32 {
 @compute @workgroup_size(64)
 fn main(@builtin(local_invocation_index) i: u32) {
     let total = arrayLength(&entries);
-    // The instance stream, in the table's order.
+    // The instance stream, and the fine tier as lights for the `lights` view, each in the
+    // table's order.
     var placed = 0u;
+    var shown_count = 0u;
     for (var first = 0u; first < total; first += GROUP) {
         let index = first + i;
         var e = vec4u(0u);
-        var mask = 0u;
+        var masks = vec2u(0u);
         if index < total {
             e = entries[index];
-            mask = drawn_mask(e);
+            masks = light_masks(e);
         }
-        let prefix = exclusive_prefix(i, countOneBits(mask));
+        let fine = select(0u, masks.x, is_fine(e));
+        let prefix = exclusive_prefix(i, countOneBits(masks.y));
+        let shown_prefix = exclusive_prefix(i, countOneBits(fine));
         var at = placed + prefix.x;
+        var shown_at = shown_count + shown_prefix.x;
+        let slot = unpack_place(e.x, e.y);
         for (var j = 0u; j < 32u; j++) {
-            if (mask & (1u << j)) != 0u {
+            if (masks.y & (1u << j)) != 0u {
                 write_light(e, j, at);
                 at++;
             }
+            if (fine & (1u << j)) != 0u {
+                let node = light_node(slot, j);
+                if shown_at < arrayLength(&shown) {
+                    let level = place_of(slot, j / 2u).level;
+                    shown[shown_at] = ReflectionLight(node.position, node.area, node.normal, level, node.flux, 0.0);
+                }
+                shown_at++;
+            }
         }
         placed += prefix.y;
+        shown_count += shown_prefix.y;
     }
     if i == 0u {
         args = DrawArgs(VOLUME_VERTICES, min(placed, arrayLength(&stream)), 0u, 0u);
         atomicStore(&stats.lights, min(placed, arrayLength(&stream)));
         atomicStore(&stats.tiles, total);
         atomicStore(&stats.full, 0u);
-    }
-    // The fine tier as lights for the `lights` view, in the table's order.
-    var shown_count = 0u;
-    for (var first = 0u; first < total; first += GROUP) {
-        let index = first + i;
-        var count = 0u;
-        var e = vec4u(0u);
-        if index < total {
-            e = entries[index];
-            if is_fine(e) {
-                for (var j = 0u; j < 32u; j++) {
-                    count += u32(is_drawn(unpack_place(e.x, e.y), j));
-                }
-            }
-        }
-        let prefix = exclusive_prefix(i, count);
-        var at = shown_count + prefix.x;
-        for (var j = 0u; j < 32u; j++) {
-            if count > 0u && is_drawn(unpack_place(e.x, e.y), j) {
-                let p = place_of(unpack_place(e.x, e.y), j / 2u);
-                let node = light_node(unpack_place(e.x, e.y), j);
-                if at < arrayLength(&shown) {
-                    shown[at] = ReflectionLight(node.position, node.area, node.normal, p.level, node.flux, 0.0);
-                }
-                at++;
-            }
-        }
-        shown_count += prefix.y;
-    }
-    if i == 0u {
         stats.vertex_count = 6u;
         stats.instance_count = min(shown_count, arrayLength(&shown));
         stats.first_vertex = 0u;
