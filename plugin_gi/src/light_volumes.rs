@@ -32,8 +32,16 @@ const VOLUME_LIGHT_SIZE: u64 = 80;
 const RECEIVERS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
 /// What the table is made for: when any of it changes, it is made again.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct TableKey<'a> {
+    pub frame: TableFrame,
+    /// The lamp's distribution over its frustum (borrowed: the table keeps a copy).
+    pub distribution: &'a IntensityDistribution,
+}
+
+/// The key's sizes and frustum.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TableFrame {
     /// The pyramid's base (the flux G-buffer), the lamp view, and a base texel's side in
     /// lamp-view texels.
     pub base: (u32, u32),
@@ -42,20 +50,20 @@ pub struct TableKey<'a> {
     /// The pyramid's finest level built (GiParams::min_level): no slot is finer.
     pub floor: u32,
     pub budget: u32,
-    /// The lamp frustum's vertical field of view and aspect, and its distribution.
+    /// The lamp frustum's vertical field of view and aspect.
     pub fov_y: f32,
     pub aspect: f32,
-    pub distribution: &'a IntensityDistribution,
 }
 
 impl TableKey<'_> {
     pub fn table(&self) -> DistributionTable {
-        let (tw, th, texels) = distribution_texels(self.distribution, self.fov_y, self.aspect);
-        let tan = ((self.fov_y * 0.5).tan() * self.aspect, (self.fov_y * 0.5).tan());
-        let importance = lamp_importance(self.base, self.view, self.block, tan, (tw, th, &texels));
-        let coarse = (self.budget / COARSE_SHARE).max(16);
-        let tree = Quadtree::new(self.base.0, self.base.1);
-        DistributionTable::build(&tree, &importance, self.floor, self.budget, coarse)
+        let f = &self.frame;
+        let (tw, th, texels) = distribution_texels(self.distribution, f.fov_y, f.aspect);
+        let tan = ((f.fov_y * 0.5).tan() * f.aspect, (f.fov_y * 0.5).tan());
+        let importance = lamp_importance(f.base, f.view, f.block, tan, (tw, th, &texels));
+        let coarse = (f.budget / COARSE_SHARE).max(16);
+        let tree = Quadtree::new(f.base.0, f.base.1);
+        DistributionTable::build(&tree, &importance, f.floor, f.budget, coarse)
     }
 }
 
@@ -96,9 +104,8 @@ pub struct LightVolumes {
     volumes_pipelines: [wgpu::RenderPipeline; 2],
     /// Rgba32Float where the device blends it, else Rgba16Float.
     shaded_format: wgpu::TextureFormat,
-    /// The table in its GPU form, and what it was made for (the key's distribution kept
-    /// beside it, so a frame's key borrows the lamp's instead of copying it).
-    table: Option<(TableKey<'static>, IntensityDistribution, wgpu::Buffer)>,
+    /// The table in its GPU form, and what it was made for.
+    table: Option<(TableFrame, IntensityDistribution, wgpu::Buffer)>,
     scratch: Option<(ScratchKey, Scratch)>,
 }
 
@@ -224,19 +231,17 @@ impl LightVolumes {
 
     /// The table for `key`, made again only when the key changed; its entries' buffer.
     fn table(&mut self, device: &wgpu::Device, key: &TableKey) -> &wgpu::Buffer {
-        let same = |(k, d, _): &(TableKey<'static>, IntensityDistribution, wgpu::Buffer)| {
-            TableKey { distribution: key.distribution, ..*k } == *key && d == key.distribution
-        };
+        let same =
+            |(f, d, _): &(TableFrame, IntensityDistribution, wgpu::Buffer)| *f == key.frame && d == key.distribution;
         if !self.table.as_ref().is_some_and(same) {
-            log::info!("gi: distribution table of {} slots over {:?}", key.budget, key.base);
+            log::info!("gi: distribution table of {} slots over {:?}", key.frame.budget, key.frame.base);
             let entries = key.table().entries();
             let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("gi distribution table"),
                 contents: bytemuck::cast_slice(&entries),
                 usage: wgpu::BufferUsages::STORAGE,
             });
-            static UNIFORM: IntensityDistribution = IntensityDistribution::Uniform;
-            self.table = Some((TableKey { distribution: &UNIFORM, ..*key }, key.distribution.clone(), buffer));
+            self.table = Some((key.frame, key.distribution.clone(), buffer));
         }
         &self.table.as_ref().expect("made above").2
     }

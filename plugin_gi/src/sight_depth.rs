@@ -3,7 +3,7 @@
 //! once a frame by the first bounce's gather (cuts) or the light volumes (article), as the
 //! graph image `gi.sight_depth`.
 
-use engine::graph::TextureDesc;
+use engine::graph::{Handle, Image, PassContext, PassDecl, Read, TextureDesc, Write};
 use engine::wgpu;
 
 use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
@@ -12,10 +12,15 @@ use crate::shader::module;
 pub const SHADER: &str = include_str!("../../shaders/gi/sight_depth.wgsl");
 
 /// The sight depth for a G-buffer of `gbuffer` texels: half its size each way, rounded up.
-pub fn sight_depth_desc(gbuffer: (u32, u32)) -> TextureDesc {
+fn sight_depth_desc(gbuffer: (u32, u32)) -> TextureDesc {
     let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
     TextureDesc { usage, ..TextureDesc::target(wgpu::TextureFormat::R32Float) }
         .fixed(gbuffer.0.div_ceil(2), gbuffer.1.div_ceil(2))
+}
+
+/// Declares the sight depth `image`, made by the declaring pass, where `visibility`.
+pub fn declare(d: &mut PassDecl<'_>, image: Handle<Image>, visibility: bool) -> Option<Write<Image>> {
+    visibility.then(|| d.create(image, sight_depth_desc(d.size())))
 }
 
 pub struct SightDepth {
@@ -31,24 +36,18 @@ impl SightDepth {
         Self { layout, pipeline }
     }
 
-    /// Records the sight depth (`depth`, [`sight_depth_desc`] of `size`) from the G-buffer's
-    /// `position`; returns the number of dispatches, one.
-    pub fn record(
-        &self,
-        device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        globals: &wgpu::BindGroup,
-        position: &wgpu::TextureView,
-        depth: &wgpu::TextureView,
-        size: (u32, u32),
-    ) -> u32 {
-        let group = bind(device, &self.layout, &[R::View(position), R::View(depth)]);
-        let mut pass = encoder
+    /// Records the sight depth (`depth`, as [`declare`]d) from the G-buffer's `position`;
+    /// returns the number of dispatches, one.
+    pub fn record(&self, ctx: &mut PassContext<'_>, position: &Read<Image>, depth: &Write<Image>) -> u32 {
+        let size = ctx.texture(depth).size();
+        let group = bind(&ctx.gpu.device, &self.layout, &[R::View(ctx.view(position)), R::View(ctx.view(depth))]);
+        let mut pass = ctx
+            .encoder
             .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi sight depth"), timestamp_writes: None });
-        pass.set_bind_group(0, globals, &[]);
+        pass.set_bind_group(0, ctx.frame.globals, &[]);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(1, &group, &[]);
-        pass.dispatch_workgroups(size.0.div_ceil(8), size.1.div_ceil(8), 1);
+        pass.dispatch_workgroups(size.width.div_ceil(8), size.height.div_ceil(8), 1);
         1
     }
 }

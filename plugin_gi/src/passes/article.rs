@@ -10,11 +10,11 @@ use engine::wgpu;
 use super::gather::{irradiance_texture, lights_desc, sink, stats_desc};
 use super::params::{finest_level, flux_size, halvings, indirect_size, lamp_view_size};
 use crate::gather::receivers_desc;
-use crate::light_volumes::{LightVolumes, TableKey, VolumeTargets};
+use crate::light_volumes::{LightVolumes, TableFrame, TableKey, VolumeTargets};
 use crate::resources::GiResources;
 use crate::settings::Method;
 use crate::shared::GiHandle;
-use crate::sight_depth::{sight_depth_desc, SightDepth};
+use crate::sight_depth::{self, SightDepth};
 
 pub struct ArticlePass {
     handle: GiHandle,
@@ -84,7 +84,7 @@ impl RenderPass for ArticlePass {
             stats: d.create(gi.stats, stats_desc()),
             lights: d.create(gi.lights, lights_desc()),
             receivers: d.create(gi.receivers, receivers_desc(indirect)),
-            sight_depth: (settings.visibility == 1).then(|| d.create(gi.sight_depth, sight_depth_desc(d.size()))),
+            sight_depth: sight_depth::declare(d, gi.sight_depth, settings.visibility == 1),
             indirect,
         })
     }
@@ -93,7 +93,7 @@ impl RenderPass for ArticlePass {
         let Some(io) = io else { return };
         let settings = self.handle.settings();
         let (size, attached) = (ctx.frame.size, ctx.frame.view.headlamp.attached);
-        let key = TableKey {
+        let frame = TableFrame {
             base: flux_size(&settings, size, attached),
             view: lamp_view_size(size, attached),
             block: 1 << halvings(&settings, size, attached),
@@ -101,21 +101,11 @@ impl RenderPass for ArticlePass {
             budget: settings.light_budget,
             fov_y: ctx.frame.lamp.fov_y,
             aspect: ctx.frame.lamp.aspect,
-            distribution: &ctx.frame.view.headlamp.profile.distribution,
         };
+        let key = TableKey { frame, distribution: &ctx.frame.view.headlamp.profile.distribution };
         let mut dispatches = 0;
         if let Some(depth) = &io.sight_depth {
-            let size = ctx.texture(depth).size();
-            let (device, position) = (&ctx.gpu.device, ctx.view(&io.position));
-            let depth_view = ctx.view(depth);
-            dispatches += self.sight_depth.record(
-                device,
-                ctx.encoder,
-                ctx.frame.globals,
-                position,
-                depth_view,
-                (size.width, size.height),
-            );
+            dispatches += self.sight_depth.record(ctx, &io.position, depth);
         }
         let targets = VolumeTargets {
             params: ctx.buffer(&io.params),

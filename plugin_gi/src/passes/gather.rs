@@ -10,7 +10,7 @@ use crate::gpu_types::{CENTRE_LIGHTS, GATHER_STATS_SIZE};
 use crate::resources::GiResources;
 use crate::settings::Method;
 use crate::shared::GiHandle;
-use crate::sight_depth::{sight_depth_desc, SightDepth};
+use crate::sight_depth::{self, SightDepth};
 
 pub struct GatherPass {
     handle: GiHandle,
@@ -127,7 +127,7 @@ impl RenderPass for GatherPass {
             stats: d.create(gi.stats, stats_desc()),
             lights: d.create(gi.lights, lights_desc()),
             receivers: d.create(gi.receivers, receivers_desc(size)),
-            sight_depth: (settings.visibility == 1).then(|| d.create(gi.sight_depth, sight_depth_desc(d.size()))),
+            sight_depth: sight_depth::declare(d, gi.sight_depth, settings.visibility == 1),
             layout,
         })
     }
@@ -136,15 +136,7 @@ impl RenderPass for GatherPass {
         let Some(io) = io else { return };
         let mut dispatches = 0;
         if let Some(depth) = &io.sight_depth {
-            let size = ctx.texture(depth).size();
-            dispatches += self.sight_depth.record(
-                &ctx.gpu.device,
-                ctx.encoder,
-                ctx.frame.globals,
-                ctx.view(&io.position),
-                ctx.view(depth),
-                (size.width, size.height),
-            );
+            dispatches += self.sight_depth.record(ctx, &io.position, depth);
         }
         let targets = GatherTargets {
             params: ctx.buffer(&io.params),
