@@ -49,16 +49,16 @@ engine::gpu_struct! {
         /// Where the receivers' and the flux G-buffer's grids lie this frame (see `grids`).
         pub receiver_offset: [f32; 2],
         pub sender_offset: [f32; 2],
-        pub receiver_parity: u32,
         /// The article method's interleaved sampling: its lights dealt over N×N sub-images.
         pub article_interleave: u32,
         /// The article method's fine light volumes, in sizes of their coarse lights.
         pub volume_reach: f32,
-        /// The whole cells the receivers' grid has stepped back, mod 12 each way (x | y << 16).
+        /// The whole cells the receivers' grid has stepped back, mod 12 each way (x | y << 16):
+        /// the gather's 2×2 interleave follows their parity, the article's sub-images them.
         pub receiver_steps: u32,
         /// The periods the senders' grid has stepped back, + 2048 each way (x | y << 16).
         pub sender_steps: u32,
-        pub pad: u32,
+        pub pad: [u32; 2],
         /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin,
         /// its forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a
         /// texel's corner rays follow from its index: the reference's footprints in its near

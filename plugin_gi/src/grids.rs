@@ -14,7 +14,8 @@ use engine::glam::Vec3;
 /// many blocks at a time, so the pyramid's four finest levels keep their grouping as it does.
 pub(crate) const SENDER_PAD: u32 = 8;
 
-/// The grids of one frame (GiParams' `receiver_offset`, `sender_offset`, `receiver_parity`).
+/// The grids of one frame (GiParams' `receiver_offset`, `sender_offset`, `receiver_steps`,
+/// `sender_steps`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Grids {
     /// The receivers' shift, in cells, −½ to ½ each way.
@@ -22,11 +23,9 @@ pub(crate) struct Grids {
     /// How many lamp-view texels before the view's corner the flux G-buffer's first block
     /// begins, 0 to SENDER_PAD blocks (0 where its texels are single lamp-view texels).
     pub sender_offset: [f32; 2],
-    /// The parity of the whole cells the receivers' grid has stepped back (bit 0 across, bit 1
-    /// down): the gather's 2×2 interleave pattern follows it, so a world point keeps its class.
-    pub receiver_parity: u32,
-    /// The same steps mod 12 (a multiple of every interleave side, 1 to 4), across and down:
-    /// the article's N×N sub-images follow them.
+    /// The whole cells the receivers' grid has stepped back, mod 12 (a multiple of every
+    /// interleave side, 1 to 4), across and down: the gather's 2×2 interleave pattern follows
+    /// their parity and the article's N×N sub-images them, so a world point keeps its class.
     pub receiver_steps: [u32; 2],
     /// The whole periods (SENDER_PAD blocks) the senders' grid has stepped back, + 2048
     /// (a turn moves the picture by a few thousand pixels at most), across and down: each
@@ -53,11 +52,9 @@ impl Grids {
         let cells = |i: usize| moved[i] / cell[i] + 0.5;
         let period = f64::from(block * SENDER_PAD);
         let senders = |i: usize| if block > 1 { (period - moved[i].rem_euclid(period)) as f32 } else { 0.0 };
-        let parity = |i: usize| cells(i).floor().rem_euclid(2.0) as u32;
         Self {
             receiver_offset: [(cells(0).rem_euclid(1.0) - 0.5) as f32, (cells(1).rem_euclid(1.0) - 0.5) as f32],
             sender_offset: [senders(0), senders(1)],
-            receiver_parity: parity(0) | (parity(1) << 1),
             receiver_steps: [0, 1].map(|i| cells(i).floor().rem_euclid(12.0) as u32),
             sender_steps: [0, 1].map(|i| if block > 1 { ((moved[i] / period).floor() + 2048.0) as u32 } else { 2048 }),
         }
@@ -82,7 +79,7 @@ mod tests {
     fn the_grids_move_with_the_picture_and_step_back_a_cell_at_a_time() {
         let level = Grids::of(&turned(0.0, 0.0), SIZE, LOW, 4);
         assert_eq!(level.receiver_offset, [0.0, 0.0]);
-        assert_eq!(level.receiver_parity, 0);
+        assert_eq!(level.receiver_steps, [0, 0]);
         // Blocks of 4 texels: the senders' grid begins SENDER_PAD blocks before the view.
         assert_eq!(level.sender_offset, [32.0, 32.0]);
         // Turned left by one pixel (a quarter of a 4-pixel cell): the picture moved right, and
@@ -90,10 +87,9 @@ mod tests {
         let left = Grids::of(&turned(1.0, 0.0), SIZE, LOW, 4);
         assert!((left.receiver_offset[0] - 0.25).abs() < 1e-4, "{left:?}");
         assert!((left.sender_offset[0] - 31.0).abs() < 1e-3, "{left:?}");
-        // Three pixels: past half a cell the receivers step back a cell, and the parity flips.
+        // Three pixels: past half a cell the receivers step back a cell.
         let further = Grids::of(&turned(3.0, 0.0), SIZE, LOW, 4);
         assert!((further.receiver_offset[0] + 0.25).abs() < 1e-4, "{further:?}");
-        assert_eq!(further.receiver_parity, 1);
         assert_eq!(further.receiver_steps, [1, 0]);
         // Turned right by as much: a cell the other way, 11 mod 12.
         assert_eq!(Grids::of(&turned(-3.0, 0.0), SIZE, LOW, 4).receiver_steps, [11, 0]);
@@ -107,7 +103,7 @@ mod tests {
         assert_eq!((level.sender_steps, period.sender_steps), ([2048, 2048], [2049, 2048]));
         assert!((period.sender_offset[0] - 31.0).abs() < 1e-3, "{period:?}");
         assert!((period.receiver_offset[0] - 0.25).abs() < 1e-4, "{period:?}");
-        assert_eq!(period.receiver_parity, 0);
+        assert_eq!(period.receiver_steps, [8, 0], "32 pixels are 8 cells more");
     }
 
     #[test]

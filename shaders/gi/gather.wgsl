@@ -91,9 +91,9 @@ fn same_surface(x: vec3f, n: vec3f, d: f32, b: u32) -> bool {
 }
 
 // The class of lights the receiver at tile position p evaluates itself: a 2×2 pattern that
-// stays on its world points as the receivers' grid steps back (GiParams.receiver_parity).
+// stays on its world points as the receivers' grid steps back (GiParams.receiver_steps).
 fn light_class(p: vec2i) -> u32 {
-    let stepped = vec2i(i32(params.receiver_parity & 1u), i32(params.receiver_parity >> 1u));
+    let stepped = vec2i(receiver_steps(params) & vec2u(1u));
     return u32((p.x + stepped.x) & 1) + 2u * u32((p.y + stepped.y) & 1);
 }
 
@@ -179,7 +179,7 @@ fn receiver_position(r: u32) -> vec2i {
     let run = r / 8u;
     let lane = r % 8u;
     let kind = run % 4u;
-    let stepped = vec2i(i32(params.receiver_parity & 1u), i32(params.receiver_parity >> 1u));
+    let stepped = vec2i(receiver_steps(params) & vec2u(1u));
     let first = (vec2i(i32(kind & 1u), i32(kind >> 1u)) - stepped) & vec2i(1);
     return first + 2 * vec2i(i32(lane & 3u), 2 * i32(run / 4u) + i32(lane >> 2u));
 }

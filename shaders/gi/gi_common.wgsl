@@ -90,20 +90,20 @@ struct GiParams {
     // points (plugin_gi/src/grids.rs).
     receiver_offset: vec2f,
     sender_offset: vec2f,
-    // The parity of the whole cells the receivers' grid has stepped back (bit 0 across, bit 1
-    // down), which the gather's interleave pattern follows (gather.wgsl's `light_class`).
-    receiver_parity: u32,
     // The article method's interleaved sampling: N, its lights dealt over N×N sub-images, and
     // its fine light volumes' radius in sizes of their coarse lights (light_stream.wgsl).
     article_interleave: u32,
     volume_reach: f32,
-    // The whole cells the receivers' grid has stepped back, mod 12 each way (x | y << 16): the
-    // article's sub-images follow them (sub_image_layout.wgsl).
+    // The whole cells the receivers' grid has stepped back, mod 12 each way (x | y << 16:
+    // `receiver_steps`): the gather's 2×2 interleave pattern follows their parity
+    // (gather.wgsl's `light_class`), the article's sub-images them mod N
+    // (sub_image_layout.wgsl), so a world point keeps its class of lights.
     receiver_steps: u32,
     // The periods (SENDER_PAD blocks) the senders' grid has stepped back, + 2048, each way
     // (x | y << 16): the article's lights keep their subsets by them (light_stream.wgsl).
     sender_steps: u32,
-    pad: u32,
+    pad0: u32,
+    pad1: u32,
     // The frame the lamp view was rendered from: origin, forward axis, and right and up axes
     // scaled by lamp_tan, so a texel's corner rays follow from its index.
     view_origin: vec4f,
@@ -113,6 +113,11 @@ struct GiParams {
 };
 
 const PYRAMID_LEVELS: u32 = 7u;
+
+// GiParams.receiver_steps, across and down.
+fn receiver_steps(p: GiParams) -> vec2u {
+    return vec2u(p.receiver_steps & 0xffffu, p.receiver_steps >> 16u);
+}
 
 // The cuts pass (cuts.wgsl) builds one cut per tile of CUT_TILE × CUT_TILE receivers, each
 // of at most CUT_MAX lights (or every light of the top level, when it has more); the gather

@@ -13,8 +13,7 @@ fn sub_side() -> u32 {
 // A step back of the grid moves a world point to the next receiver, q + 1: the shift is the
 // steps taken away (12 − steps, mod 12 as they are, then mod N).
 fn sub_shift() -> vec2u {
-    let steps = vec2u(params.receiver_steps & 0xffffu, params.receiver_steps >> 16u);
-    return (12u - steps) % 12u % sub_side();
+    return (12u - receiver_steps(params)) % 12u % sub_side();
 }
 
 // A sub-image's size in receivers.
