@@ -87,6 +87,7 @@ each_member! {
     gltf_conformance_has_no_import_circle: "engine/scene/conformance",
     physics_has_no_import_circle: "engine/physics",
     audio_has_no_import_circle: "engine/audio",
+    bounds_has_no_import_circle: "engine/bounds",
     plugin_gi_has_no_import_circle: "plugin_gi",
     gi_reference_has_no_import_circle: "plugin_gi/reference",
     game_has_no_import_circle: "game",

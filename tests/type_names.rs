@@ -55,6 +55,7 @@ fn no_public_type_name_is_declared_in_two_crates() {
         "engine/scene",
         "engine/physics",
         "engine/audio",
+        "engine/bounds",
         "plugin_gi",
         "game",
         "game/ui",

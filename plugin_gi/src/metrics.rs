@@ -141,7 +141,7 @@ fn block_means_where(image: &image::Rgba32FImage, block: u32, counts: impl Fn(u3
 /// The pixels of every `every`-th `block`×`block` block across and down (those that fit
 /// whole), as a mask for the `_masked` figures: the blocks a costly reference is evaluated on.
 pub fn block_mask(width: u32, height: u32, block: u32, every: u32) -> Vec<bool> {
-    assert!(block > 0 && every > 0, "blocks and strides are at least 1");
+    assert!(block != 0 && every != 0, "blocks and strides are at least 1");
     let (bw, bh) = (width / block, height / block);
     let mut mask = vec![false; (width * height) as usize];
     for y in 0..bh * block {
@@ -192,6 +192,11 @@ pub fn change(frames: &[Vec<f64>]) -> f64 {
 mod tests {
     use super::*;
 
+    /// Asserts that `figure` is `value` within `within`, NaN failing.
+    fn near(figure: &str, value: f64, expected: f64, within: f64) {
+        bounds::assert(bounds::magnitude_at_most(figure, value - expected, within));
+    }
+
     fn flat(w: u32, h: u32, v: f32) -> image::Rgba32FImage {
         image::Rgba32FImage::from_pixel(w, h, image::Rgba([v, v, v, 1.0]))
     }
@@ -199,12 +204,12 @@ mod tests {
     #[test]
     fn block_error_is_zero_for_equal_images_and_relative_otherwise() {
         assert_eq!(block_error(&flat(16, 16, 0.5), &flat(16, 16, 0.5)), 0.0);
-        assert!((block_error(&flat(16, 16, 1.1), &flat(16, 16, 1.0)) - 0.1).abs() < 1e-6);
+        near("10 % more light", block_error(&flat(16, 16, 1.1), &flat(16, 16, 1.0)), 0.1, 1e-6);
         // Noise within a block averages out.
         let mut noisy = flat(8, 8, 1.0);
         noisy.put_pixel(0, 0, image::Rgba([2.0, 2.0, 2.0, 1.0]));
         noisy.put_pixel(1, 0, image::Rgba([0.0, 0.0, 0.0, 1.0]));
-        assert!(block_error(&noisy, &flat(8, 8, 1.0)) < 1e-9);
+        near("noise inside a block", block_error(&noisy, &flat(8, 8, 1.0)), 0.0, 1e-9);
     }
 
     #[test]
@@ -227,9 +232,12 @@ mod tests {
         let mask = block_mask(24, 8, 8, 2);
         assert_eq!(mask.iter().filter(|&&m| m).count(), 128, "blocks 0 and 2");
         assert_eq!(block_error_masked(&test, &reference, &mask), 0.0);
-        assert!((block_error(&test, &reference) - 1.0 / 3f64.sqrt()).abs() < 1e-12);
-        assert!(
-            (block_error_masked(&test, &reference, &[true; 24 * 8]) - block_error(&test, &reference)).abs() < 1e-15
+        near("one block of three doubled", block_error(&test, &reference), 1.0 / 3f64.sqrt(), 1e-12);
+        near(
+            "masked by all against unmasked",
+            block_error_masked(&test, &reference, &[true; 24 * 8]),
+            block_error(&test, &reference),
+            1e-15,
         );
         // A block partly outside the mask does not count; none at all gives NaN.
         let mut partial = vec![true; 24 * 8];
@@ -244,19 +252,53 @@ mod tests {
         assert!(!block_mask(10, 10, 4, 1)[(9 * 10 + 9) as usize] && block_mask(10, 10, 4, 1)[0]);
     }
 
+    /// A GI that writes NaN or ∞ in a single pixel fails every figure's check, by name; so does
+    /// a black reference (nothing to compare with).
+    #[test]
+    fn nan_and_infinity_in_any_pixel_fail_every_figure_by_name() {
+        let reference = flat(16, 16, 1.0);
+        let mask = block_mask(16, 16, 4, 2);
+        for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+            let mut test = flat(16, 16, 1.0);
+            test.put_pixel(5, 9, image::Rgba([bad, 1.0, 1.0, 1.0]));
+            let mut masked = flat(16, 16, 1.0);
+            masked.put_pixel(1, 1, image::Rgba([1.0, bad, 1.0, 1.0]));
+            let means = |img: &image::Rgba32FImage| block_means(img, 4);
+            let figures = [
+                ("block error", block_error(&test, &reference)),
+                ("4x4 block error", block_error_sized(&test, &reference, 4)),
+                ("masked block error", block_error_masked_sized(&masked, &reference, &mask, 4)),
+                ("energy", energy(&test, &reference)),
+                ("masked energy", energy_masked(&masked, &reference, &mask)),
+                ("flicker", flicker(&[means(&reference), means(&test)], &[means(&reference), means(&reference)])),
+                ("change", change(&[means(&reference), means(&test)])),
+                ("the error of the worst frame", bounds::worst([0.01, block_error(&test, &reference), 0.02])),
+            ];
+            for (name, value) in figures {
+                let e = bounds::at_most(name, value, 0.05).expect_err(name);
+                assert!(e.starts_with(name) && e.contains("not a finite number"), "{e}");
+            }
+        }
+        let black = flat(16, 16, 0.0);
+        for (name, value) in [("block error", block_error(&reference, &black)), ("energy", energy(&reference, &black))]
+        {
+            assert!(bounds::magnitude_at_most(name, value, 0.05).is_err(), "{name} against black: {value}");
+        }
+    }
+
     #[test]
     fn flicker_sees_an_error_that_moves_but_not_one_that_holds_still() {
         let reference = vec![vec![1.0, 1.0], vec![1.0, 1.0], vec![1.0, 1.0]];
         // A constant bias does not flicker.
         let biased = vec![vec![1.1, 0.9], vec![1.1, 0.9], vec![1.1, 0.9]];
-        assert!(flicker(&biased, &reference).abs() < 1e-12);
+        near("a steady bias", flicker(&biased, &reference), 0.0, 1e-12);
         // An error that swaps sides every frame does: ‖(−0.2, 0.2)‖ / ‖(1, 1)‖ = 0.2.
         let jumping = vec![vec![1.1, 0.9], vec![0.9, 1.1], vec![1.1, 0.9]];
-        assert!((flicker(&jumping, &reference) - 0.2).abs() < 1e-12);
+        near("an error swapping sides", flicker(&jumping, &reference), 0.2, 1e-12);
         // The same motion in the reference and the test is no error at all.
         let moving = vec![vec![1.0, 2.0], vec![2.0, 1.0], vec![1.0, 2.0]];
-        assert!(flicker(&moving, &moving).abs() < 1e-12);
-        assert!((change(&moving) - 2f64.sqrt() / 5f64.sqrt()).abs() < 1e-12);
+        near("the same motion", flicker(&moving, &moving), 0.0, 1e-12);
+        near("the change", change(&moving), 2f64.sqrt() / 5f64.sqrt(), 1e-12);
         assert!(flicker(&biased[..1], &reference[..1]).is_nan());
     }
 }
