@@ -167,7 +167,7 @@ pub fn replay_shot_name(name: &str, tick: u32) -> String {
 pub fn render_replay_ticks(name: &str, ticks: &[u32]) -> Vec<(u32, image::RgbaImage)> {
     let replay = replay_files::open(name);
     let mut frames = Vec::new();
-    let end = game::replay_frames::frames(&replay, ticks, SIZE, |tick, image| {
+    let end = game::replay_frames::frames(&replay, ticks, SIZE, Gpu::lavapipe, |tick, image| {
         frames.push((tick, image.clone()));
         Ok(())
     })

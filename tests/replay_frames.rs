@@ -15,7 +15,7 @@ fn display_luminance(img: &image::RgbaImage) -> f32 {
 fn every_test_replay_has_shots() {
     let shot: Vec<&str> = REPLAY_SHOTS.iter().map(|(n, _)| *n).collect();
     assert_eq!(replay_files::script_names(), shot, "every script in tests/replays is rendered");
-    assert!(shot.len() >= 5);
+    bounds::assert(bounds::at_least("test replays", shot.len() as f64, 5.0));
 }
 
 #[test]
@@ -25,7 +25,7 @@ fn replay_frames_match_goldens() {
         for (t, img) in render_replay_ticks(name, ticks) {
             // A black frame must never pass as "matching", even against a black golden.
             let l = display_luminance(&img);
-            assert!(l > 4.0, "{name} t{t}: frame is nearly black (mean luminance {l} of 255)");
+            bounds::assert(bounds::at_least(format!("{name} t{t}: the mean display luminance of 255"), l, 4.0));
             let golden = replay_shot_name(name, t);
             match check_golden(&golden, &img) {
                 Ok(d) => println!("{golden}: {d}"),
@@ -42,9 +42,14 @@ fn replay_frames_match_goldens() {
 fn with_the_lamp_off_the_corridor_is_dark() {
     let frames = render_replay_ticks("lamp_toggle", &[30, 31]);
     let (on, off) = (display_luminance(&frames[0].1), display_luminance(&frames[1].1));
-    assert!(on > 4.0, "the lamp on lights the corridor: mean luminance {on} of 255");
-    assert!(off < 0.01 * on, "the lamp is off but the frame is lit: mean luminance {off} vs {on} of 255");
+    bounds::assert_all([
+        bounds::at_least("the lamp on: the mean display luminance of 255", on, 4.0),
+        bounds::at_most("the lamp off: the mean display luminance over the lamp on's", off / on, 0.01),
+    ]);
     let lit = frames[1].1.pixels().filter(|p| p[0] > 8 || p[1] > 8 || p[2] > 8).count();
     // The sight's three dots, a few pixels each at 320×180.
-    assert!((1..=24).contains(&lit), "{lit} lit pixels with the lamp off (the sight dots alone are a few)");
+    bounds::assert_all([
+        bounds::at_least("lit pixels with the lamp off (the sight dots)", lit as f64, 1.0),
+        bounds::at_most("lit pixels with the lamp off (the sight dots alone)", lit as f64, 24.0),
+    ]);
 }

@@ -42,7 +42,7 @@ fn run(prefixes: Vec<String>) -> Result<(), String> {
         println!("{}: written (mean luminance {:.4})", path.display(), game::golden::mean_luminance(image));
         Ok(())
     };
-    let gpu = engine::gpu::Gpu::headless().map_err(|e| e.to_string())?;
+    let gpu = engine::gpu::Gpu::lavapipe().map_err(|e| e.to_string())?;
     for (id, shots) in LEVEL_SHOTS {
         if !shots.iter().any(|s| wanted(s.name)) {
             continue;

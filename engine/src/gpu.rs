@@ -12,7 +12,28 @@ fn one_line(e: &impl fmt::Display) -> String {
 pub const LAVAPIPE_HINT: &str = "install Mesa's software Vulkan driver (lavapipe): \
 `sudo apt-get install mesa-vulkan-drivers libvulkan1` (Debian/Ubuntu), then retry";
 
-#[derive(Debug)]
+/// The Vulkan driver name (`VkPhysicalDeviceDriverProperties::driverName`, wgpu's
+/// `AdapterInfo::driver`) of Mesa's software rasteriser, lavapipe.
+pub const LAVAPIPE_DRIVER: &str = "llvmpipe";
+
+/// Which of `adapters` is lavapipe: the first Vulkan adapter whose driver is
+/// [`LAVAPIPE_DRIVER`]. Any other adapter is refused, however capable, with the list of what
+/// was found: pictures and GI figures compared with goldens made on lavapipe would meet another
+/// rasteriser's rounding there.
+pub fn choose_lavapipe(adapters: &[wgpu::AdapterInfo]) -> Result<usize, GpuError> {
+    adapters
+        .iter()
+        .position(|a| a.backend == wgpu::Backend::Vulkan && a.driver.eq_ignore_ascii_case(LAVAPIPE_DRIVER))
+        .ok_or_else(|| {
+            let found: Vec<String> =
+                adapters.iter().map(|a| format!("{} ({:?}, driver {})", a.name, a.backend, a.driver)).collect();
+            let found = if found.is_empty() { "none".to_string() } else { found.join(", ") };
+            GpuError::NoAdapter(format!(
+                "goldens and GI figures are compared on lavapipe (Vulkan driver {LAVAPIPE_DRIVER}); found {found}"
+            ))
+        })
+}
+
 pub enum GpuError {
     NoAdapter(String),
     Device(String),
@@ -27,6 +48,13 @@ impl fmt::Display for GpuError {
             GpuError::Device(why) => write!(f, "could not open the GPU device: {why}"),
             GpuError::Failed(why) => write!(f, "the GPU failed {why}"),
         }
+    }
+}
+
+/// As [`Display`](fmt::Display): a test's `.unwrap()` then prints the install advice.
+impl fmt::Debug for GpuError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(self, f)
     }
 }
 
@@ -48,6 +76,21 @@ impl Gpu {
     /// A device with no window. `WGPU_ADAPTER_NAME` / `WGPU_BACKEND` pick a specific adapter.
     pub fn headless() -> Result<Gpu, GpuError> {
         Self::headless_without(wgpu::Features::empty())
+    }
+
+    /// A device on lavapipe ([`choose_lavapipe`]) whatever else the machine has and whatever
+    /// the environment says: for the tests and commands that compare pictures or GI figures
+    /// with what was measured on it. Fails with install advice where it is missing.
+    pub fn lavapipe() -> Result<Gpu, GpuError> {
+        let vulkan = wgpu::InstanceDescriptor {
+            backends: wgpu::Backends::VULKAN,
+            ..wgpu::InstanceDescriptor::new_without_display_handle()
+        };
+        let instance = wgpu::Instance::new(vulkan);
+        let mut adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::VULKAN));
+        let infos: Vec<wgpu::AdapterInfo> = adapters.iter().map(wgpu::Adapter::get_info).collect();
+        let adapter = adapters.swap_remove(choose_lavapipe(&infos)?);
+        Self::open(instance, adapter, wgpu::Features::empty())
     }
 
     /// [`Gpu::headless`] without `features` even where the adapter has them: for tests of what
@@ -167,5 +210,34 @@ impl Gpu {
     /// Blocks until all submitted work is done.
     pub fn wait_idle(&self) {
         let _ = self.device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn adapter(name: &str, driver: &str, device_type: wgpu::DeviceType, backend: wgpu::Backend) -> wgpu::AdapterInfo {
+        wgpu::AdapterInfo { name: name.into(), driver: driver.into(), ..wgpu::AdapterInfo::new(device_type, backend) }
+    }
+
+    #[test]
+    fn lavapipe_is_chosen_by_its_driver_and_any_other_adapter_is_refused() {
+        use wgpu::{Backend, DeviceType};
+        let nvidia = adapter("NVIDIA H100", "NVIDIA", DeviceType::DiscreteGpu, Backend::Vulkan);
+        let lavapipe = adapter("llvmpipe (LLVM 15.0.6, 256 bits)", "llvmpipe", DeviceType::Cpu, Backend::Vulkan);
+        // Another CPU adapter is not lavapipe, nor is an adapter merely named like it.
+        let swiftshader = adapter("SwiftShader Device", "SwiftShader driver", DeviceType::Cpu, Backend::Vulkan);
+        let named_like =
+            adapter("llvmpipe", "Intel open-source Mesa driver", DeviceType::IntegratedGpu, Backend::Vulkan);
+        let on_gl = adapter("llvmpipe (LLVM 15.0.6, 256 bits)", "llvmpipe", DeviceType::Cpu, Backend::Gl);
+        assert_eq!(choose_lavapipe(&[nvidia.clone(), lavapipe.clone()]).unwrap(), 1);
+        assert_eq!(choose_lavapipe(&[lavapipe]).unwrap(), 0);
+        let refused = [nvidia, swiftshader, named_like, on_gl];
+        let e = choose_lavapipe(&refused).unwrap_err().to_string();
+        assert!(e.contains("NVIDIA H100 (Vulkan, driver NVIDIA)") && e.contains("SwiftShader"), "{e}");
+        assert!(e.contains("mesa-vulkan-drivers"), "the error says how to install lavapipe: {e}");
+        let e = choose_lavapipe(&[]).unwrap_err().to_string();
+        assert!(e.contains("found none") && e.contains("mesa-vulkan-drivers"), "{e}");
     }
 }

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context};
 use engine::clock::FixedClock;
+use engine::gpu::Gpu;
 
 use crate::cli::{RecordArgs, ReplayArgs, ScriptArgs};
 use crate::play::{GameWindow, TickSource};
@@ -84,7 +85,7 @@ pub fn headless(
             Some(dir)
         }
     };
-    frames(loaded, snapshots, size, |tick, image| match dir {
+    frames(loaded, snapshots, size, Gpu::headless, |tick, image| match dir {
         Some(dir) => Ok(image.save(dir.join(snapshot_name(tick)))?),
         None => Ok(()),
     })

@@ -6,6 +6,7 @@
 use std::path::Path;
 
 use anyhow::{bail, Context};
+use engine::gpu::Gpu;
 
 use crate::recording::LoadedReplay;
 use crate::replay_frames::{frames, snapshot_name};
@@ -33,7 +34,7 @@ pub fn run(
     let size = size.or(golden_size).unwrap_or(crate::cli::ReplayArgs::DEFAULT_SIZE);
     if update {
         std::fs::create_dir_all(dir).with_context(|| format!("--goldens {}", dir.display()))?;
-        frames(loaded, &ticks, size, |tick, image| {
+        frames(loaded, &ticks, size, Gpu::lavapipe, |tick, image| {
             let path = dir.join(snapshot_name(tick));
             crate::golden::write(&path, image).map_err(anyhow::Error::msg)?;
             println!("{}: written", path.display());
@@ -42,7 +43,7 @@ pub fn run(
         return Ok(());
     }
     let mut failed = 0;
-    frames(loaded, &ticks, size, |tick, image| {
+    frames(loaded, &ticks, size, Gpu::lavapipe, |tick, image| {
         match crate::golden::compare(&dir.join(snapshot_name(tick)), image) {
             Ok(difference) => println!("{}: ok ({difference})", dir.join(snapshot_name(tick)).display()),
             Err(e) => {
