@@ -378,7 +378,8 @@ pub struct CrawlerMeshes {
 const SKIN: [f32; 3] = [0.62, 0.58, 0.52];
 const LIMB_SKIN: [f32; 3] = [0.52, 0.48, 0.43];
 const DEAD_SKIN: [f32; 3] = [0.25, 0.22, 0.2];
-const EYE_COLOR: [f32; 3] = [0.1; 3];
+/// The eyes' albedo (they shine by their emission): what tells an eye from the rest of a frame's instances.
+pub const EYE_COLOR: [f32; 3] = [0.1; 3];
 
 impl CrawlerMeshes {
     pub fn add_to(renderer: &mut Renderer, gpu: &Gpu) -> Self {

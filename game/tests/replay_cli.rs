@@ -139,7 +139,7 @@ fn goldens_are_written_then_compared_and_a_changed_frame_fails() {
     let out = headlamp(&["replay", r, "--goldens", g]);
     let printed = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(1), "{printed}");
-    assert!(printed.contains("tick_000043.png: mean FLIP error") && printed.contains("luminance"), "{printed}");
+    assert!(printed.contains("tick_000043.png: the mean FLIP error") && printed.contains("luminance"), "{printed}");
     assert_eq!(printed.lines().filter(|l| l.contains(": ok (mean FLIP")).count(), 3, "{printed}");
     assert!(goldens.join("tick_000043.actual.png").exists() && goldens.join("tick_000043.diff.png").exists());
     refused(&out, "1 of 4 frames differ from their goldens");
