@@ -32,7 +32,9 @@ pub const ABORT_FACTOR: usize = 8;
 pub enum Outcome {
     /// The reader returned: accepted (`Ok`) or refused with its message.
     Returned(Result<(), String>),
-    Panicked,
+    /// Panicked, with its message (an integer overflow's among them: every crate of ours is
+    /// built with overflow checks, in release too).
+    Panicked(String),
     /// Still running when the time limit passed (the worker is left behind; the runner is spent).
     TimedOut,
     /// Returned, but held more memory than the limit at its peak (bytes).
@@ -110,9 +112,18 @@ unsafe impl GlobalAlloc for CountingAlloc {
 
 type Reader = dyn Fn(&[u8]) -> Result<(), String> + Send;
 
-/// What the worker sends back for an input: the reader's result (`Err` if it panicked), and the
-/// most bytes its thread held.
-type Finished = (Result<Result<(), String>, ()>, isize);
+/// What the worker sends back for an input: the reader's result (`Err` with the panic's
+/// message if it panicked), and the most bytes its thread held.
+type Finished = (Result<Result<(), String>, String>, isize);
+
+/// A panic's message, as `panic!` and the overflow checks give it.
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "a panic without a message".into())
+}
 
 /// Runs inputs one at a time on a worker thread, each under [`Limits`].
 pub struct BoundedRunner {
@@ -139,7 +150,8 @@ impl BoundedRunner {
                     COUNTING.set(true);
                     let result = INPUT.with_borrow(|(_, input)| catch_unwind(AssertUnwindSafe(|| reader(input))));
                     COUNTING.set(false);
-                    if worker_outcomes.send((result.map_err(drop), PEAK.get())).is_err() {
+                    let result = result.map_err(|payload| panic_message(payload.as_ref()));
+                    if worker_outcomes.send((result, PEAK.get())).is_err() {
                         return;
                     }
                 }
@@ -152,7 +164,7 @@ impl BoundedRunner {
     /// it for an outcome it judges a failure). Returns how it ended and the most memory it held.
     pub fn run(&self, input: &[u8], file: PathBuf) -> (Outcome, usize) {
         if self.inputs.send((file, input.to_vec())).is_err() {
-            return (Outcome::Panicked, 0);
+            return (Outcome::Panicked("the worker is gone".into()), 0);
         }
         match self.outcomes.recv_timeout(self.limits.time) {
             Ok((result, peak)) => {
@@ -160,11 +172,11 @@ impl BoundedRunner {
                 let outcome = match result {
                     Ok(_) if peak > self.limits.memory => Outcome::OverMemory(peak),
                     Ok(result) => Outcome::Returned(result),
-                    Err(()) => Outcome::Panicked,
+                    Err(message) => Outcome::Panicked(message),
                 };
                 (outcome, peak)
             }
-            Err(RecvTimeoutError::Disconnected) => (Outcome::Panicked, 0),
+            Err(RecvTimeoutError::Disconnected) => (Outcome::Panicked("the worker is gone".into()), 0),
             Err(RecvTimeoutError::Timeout) => (Outcome::TimedOut, 0),
         }
     }

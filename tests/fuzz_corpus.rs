@@ -17,6 +17,28 @@ static ALLOC: CountingAlloc = CountingAlloc;
 /// 40 MiB each on the 2-core VM (the Hall's glTF with its textures).
 const LIMITS: Limits = Limits { time: Duration::from_secs(2), memory: 256 << 20 };
 
+/// The fewest mutated inputs a target's reader must accept: half of what it accepted when the
+/// floor was set (the counts printed below). Fewer means the mutations no longer reach past
+/// the reader's first checks, and the fuzz no longer tests what lies behind them.
+fn accepted_floor(target: Target) -> usize {
+    match target {
+        Target::Gltf => 86,       // of 5,000 (172 accepted)
+        Target::Glb => 112,       // of 5,000 (225)
+        Target::Obj => 1_303,     // of 10,000 (2,607)
+        Target::Mtl => 2_746,     // of 10,000 (5,493)
+        Target::LevelToml => 945, // of 10,000 (1,891)
+        Target::Replay => 445,    // of 10,000 (891)
+        Target::Script => 11_832, // of 50,000 (23,664)
+        Target::Config => 10_031, // of 50,000 (20,063)
+    }
+}
+
+/// Whether `accepted` of a target's mutated inputs show the fuzz reaching deep into its reader.
+fn deep_enough(target: Target, accepted: usize) -> Result<(), String> {
+    let figure = format!("{}: mutated inputs accepted", target.name());
+    bounds::at_least(figure, accepted as f64, accepted_floor(target) as f64)
+}
+
 /// Mutated inputs per target; the file loaders and the replay's simulated ticks cost more per
 /// input than the parsers.
 fn rounds(target: Target) -> usize {
@@ -63,7 +85,7 @@ fn drive(
                 driven.accepted += result.is_ok() as usize;
                 continue;
             }
-            Outcome::Panicked => "panicked".to_string(),
+            Outcome::Panicked(message) => format!("panicked ({message})"),
             Outcome::TimedOut => {
                 // The worker is still busy with it: the next input gets a new one.
                 runner = new_runner();
@@ -105,6 +127,7 @@ fn mutated_shipped_files_never_panic_hang_or_hog_any_reader() {
             started.elapsed().as_secs_f64()
         );
         failures.extend(driven.failures);
+        failures.extend(deep_enough(target, driven.accepted).err());
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
@@ -119,19 +142,57 @@ fn a_hanging_or_hogging_input_fails_by_name() {
             b"hang" => std::thread::sleep(Duration::from_secs(2)),
             b"hog" => drop(std::hint::black_box(vec![1u8; 32 << 20])),
             b"panic" => panic!("a reader's bug"),
+            // Wraps silently where overflow checks are off.
+            b"overflow" => drop(std::hint::black_box(u32::MAX) + std::hint::black_box(d.len() as u32)),
             _ => {}
         }
         Ok(())
     };
-    let inputs = [&b"ok"[..], b"hang", b"ok", b"hog", b"panic", b"ok"].map(<[u8]>::to_vec);
+    let inputs = [&b"ok"[..], b"hang", b"ok", b"hog", b"panic", b"ok", b"overflow"].map(<[u8]>::to_vec);
     let Driven { failures, accepted, peak, .. } = drive("limits", limits, reader, inputs.clone().into_iter());
     assert_eq!(accepted, 3, "{failures:?}");
-    assert!(peak >= 32 << 20, "the hog's peak was counted: {peak}");
-    assert_eq!(failures.len(), 3, "{failures:?}");
-    let expect = [(1, "ran past 300ms"), (3, "held 32 MiB, over 16 MiB"), (4, "panicked")];
+    bounds::assert(bounds::at_least("the hog's peak, bytes", peak as f64, f64::from(32u32 << 20)));
+    assert_eq!(failures.len(), 4, "{failures:?}");
+    let expect = [
+        (1, "ran past 300ms"),
+        (3, "held 32 MiB, over 16 MiB"),
+        (4, "panicked (a reader's bug)"),
+        (6, "panicked (attempt to add with overflow)"),
+    ];
     for ((n, what), line) in expect.iter().zip(&failures) {
         let file = crash_dir().join(format!("limits-{n}.bin"));
         assert!(line.contains(what) && line.contains(&file.display().to_string()), "{line}");
         assert_eq!(std::fs::read(&file).unwrap(), inputs[*n], "{}", file.display());
+    }
+}
+
+/// The floors are real: a fuzz whose mutations every reader refused fails each target, by name.
+#[test]
+fn a_fuzz_that_stops_at_the_surface_fails_its_floor() {
+    for target in Target::ALL {
+        let e = deep_enough(target, 0).expect_err(target.name());
+        assert!(e.starts_with(&format!("{}: mutated inputs accepted", target.name())), "{e}");
+        assert!(deep_enough(target, accepted_floor(target)).is_ok());
+    }
+}
+
+/// The readers the fuzz reaches (scene, engine, game, the config's crate) are ours, and every
+/// crate of ours is built with overflow checks in release too, where the test command runs:
+/// the workspace's release profile turns them on, and only others' crates off.
+#[test]
+fn every_crate_of_ours_checks_for_overflow_in_release() {
+    let manifest = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../Cargo.toml")).unwrap();
+    let table: toml::Table = manifest.parse().unwrap();
+    let release = &table["profile"]["release"];
+    assert_eq!(release.get("overflow-checks").and_then(|v| v.as_bool()), Some(true), "[profile.release]");
+    let packages = release.get("package").and_then(|p| p.as_table()).cloned().unwrap_or_default();
+    for (name, settings) in packages {
+        if settings.get("overflow-checks").and_then(|v| v.as_bool()) == Some(false) {
+            assert_eq!(name, "*", "[profile.release.package.{name}] turns overflow checks off for a crate of ours");
+        }
+    }
+    let members = table["workspace"]["members"].as_array().unwrap();
+    for dir in ["engine/scene", "engine", "game", "game/ui"] {
+        assert!(members.iter().any(|m| m.as_str() == Some(dir)), "{dir} is a workspace member");
     }
 }
