@@ -29,6 +29,7 @@ mod pan;
 mod timing;
 
 pub use camera_path::CameraPath;
+pub use pan::{pan, PanReport};
 pub use timing::Spread;
 
 /// The GI-vs-reference comparison is rendered at this size: the reference costs
