@@ -22,9 +22,16 @@ const ROWS: std::ops::Range<u32> = 180..300;
 /// the receiver nearest the fold.
 const STRIP: u32 = 4;
 
+bounds::tolerance! {
+    /// The 4 pixels next to the box's fold, as a pan slides it across the receivers: the light
+    /// against the world reference's, relative, the worst frame (before receivers on a fold's
+    /// pixel were moved off it: 37 %).
+    NEXT_TO_THE_FOLD: at_most 0.2, measured 0.193
+}
+
 #[test]
 fn the_light_next_to_a_fold_holds_as_the_fold_slides_across_the_receivers() {
-    let gpu = Gpu::headless().expect("a GPU adapter (on a machine without one: apt install mesa-vulkan-drivers)");
+    let gpu = Gpu::lavapipe().unwrap();
     let scene = cornell_box();
     // The gather's own answer each frame: no history to average the frames.
     let settings = plugin_gi::GiSettings { history: 0.0, ..plugin_gi::GiSettings::default() };
@@ -34,7 +41,7 @@ fn the_light_next_to_a_fold_holds_as_the_fold_slides_across_the_receivers() {
     let mut reference = WorldReference::new(&gpu, &scene).unwrap();
     let target = HeadlessTarget::new(&gpu, SIZE.0, SIZE.1, ImageKind::Linear);
     let eye = Vec3::new(0.0, 1.0, 3.4);
-    let mut worst: f64 = 0.0;
+    let mut errors = Vec::new();
     // Turning right a tenth of a degree at a time: the fold moves about a pixel a frame, across
     // two receivers' spacing.
     for step in 0..10 {
@@ -47,9 +54,8 @@ fn the_light_next_to_a_fold_holds_as_the_fold_slides_across_the_receivers() {
         let receivers = reference.receivers(&gpu, &v, SIZE).unwrap();
         // The fold: per row, the first pixel of the right (green, normal −x) wall.
         let first_green = |y: u32| {
-            (SIZE.0 / 2..SIZE.0)
-                .find(|&x| receivers[(y * SIZE.0 + x) as usize].normal.x < -0.9)
-                .expect("the right wall")
+            let green = |x: u32| receivers[(y * SIZE.0 + x) as usize].normal.x < -0.9;
+            (SIZE.0 / 2..SIZE.0).find(|&x| green(x)).expect("the right wall")
         };
         let mask: Vec<bool> = (0..SIZE.0 * SIZE.1)
             .map(|i| {
@@ -64,10 +70,7 @@ fn the_light_next_to_a_fold_holds_as_the_fold_slides_across_the_receivers() {
             yaw.to_degrees(),
             100.0 * error
         );
-        worst = worst.max(error.abs());
+        errors.push(error.abs());
     }
-    // Before receivers on a fold's pixel were moved off it: 37 % at 2.0°; with the move and the
-    // blocks across the fold split in two, 10 % there, and 14 % at 2.4° (the interleave's
-    // neighbours, a receiver's spacing further from the fold).
-    assert!(worst < 0.2, "next to the fold the GI strays {:.1} % from the reference in some frame", 100.0 * worst);
+    NEXT_TO_THE_FOLD.assert("next to the fold, the worst frame", bounds::worst(errors));
 }

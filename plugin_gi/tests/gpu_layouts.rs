@@ -32,7 +32,7 @@ fn check_all() -> (Checked, usize) {
 fn every_wgsl_struct_has_its_twins_layout_or_is_gpu_only() {
     let (checked, gi_structs) = check_all();
     // Not vacuous: the GI's files declare structs, and each GI twin found its WGSL struct.
-    assert!(gi_structs > 0);
+    assert_ne!(gi_structs, 0);
     let gi_twins = gpu_types::twins();
     assert!(!gi_twins.is_empty());
     assert!(gi_twins.iter().all(|t| checked.structs.contains_key(t.wgsl)));

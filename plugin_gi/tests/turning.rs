@@ -18,6 +18,12 @@ const CELL: i64 = 8;
 /// (at its sides 6 % faster than at the centre), and which holds the block and the folds.
 const HALF: i64 = 96;
 
+bounds::tolerance! {
+    /// Turned by half a receiver's cell: the indirect light against the picture moved with the
+    /// turn (relative L2; with the grids fixed to the screen, 5.9 %).
+    MOVED: at_most 0.04, measured 0.037
+}
+
 /// The camera of `cornell_view` turned left by `pixels` at the centre of a `SIZE` frame.
 fn turned(pixels: f32) -> engine::view_state::ViewState {
     let mut v = cornell_view(4.0);
@@ -58,8 +64,10 @@ fn turning_half_a_cell_moves_the_indirect_light_with_the_picture() {
         100.0 * moved,
         100.0 * unmoved
     );
-    // Measured: 2.9 %, most of it where the sides of the window move a quarter of a pixel more
-    // than its centre; with the grids fixed to the screen, 5.9 %.
-    assert!(moved < 0.04, "turning half a cell resamples the light: {:.2} % from the picture moved", 100.0 * moved);
-    assert!(unmoved > 3.0 * moved, "the picture hardly moves ({:.2} %): the test turns too little", 100.0 * unmoved);
+    // Most of what is left is where the sides of the window move a quarter of a pixel more than
+    // its centre.
+    bounds::assert_all([
+        MOVED.check("turned half a cell: against the picture moved", moved),
+        bounds::at_least("the change not moved over the change moved (the test turns enough)", unmoved / moved, 3.0),
+    ]);
 }

@@ -65,6 +65,56 @@ fn corner_form_factor(a: f64, b: f64, h: f64) -> f64 {
     (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * PI)
 }
 
+bounds::tolerance! {
+    /// One small patch's light at a receiver against the point form: relative.
+    POINT_FORM: at_most 4e-8, measured 2.16e-8
+}
+bounds::tolerance! {
+    /// The polygon form of the same small patch against the point form: relative (they agree to
+    /// (size / distance)²).
+    POLYGON_FORM: at_most 2e-5, measured 1.05e-5
+}
+bounds::tolerance! {
+    /// A square emitter's light under it against the rectangle's analytic form factor: relative,
+    /// the worst of six receivers, one in the near field.
+    FORM_FACTOR: at_most 0.0003, measured 0.000181
+}
+bounds::tolerance! {
+    /// The patches' area against their triangles': relative.
+    PATCH_AREA: at_most 1.2e-7, measured 7.49e-8
+}
+bounds::tolerance! {
+    /// A patch's centre against its corners' centroid, metres, the worst patch.
+    CENTROID: at_most 6e-7, measured 3.59e-7
+}
+bounds::tolerance! {
+    /// A uniform lamp over a floor that fills its frustum: Φ against ρ·I·Ω, relative.
+    LAMP_FLUX: at_most 1.5e-5, measured 8.19e-6
+}
+bounds::tolerance! {
+    /// A floor wider than the frustum, patches up to 15 cm that the frustum's edge crosses: Φ
+    /// against ρ·I·Ω, relative.
+    FRUSTUM_EDGE: at_most 0.0008, measured 0.000429
+}
+bounds::tolerance! {
+    /// The floor under an occluder (one-sided facing the lamp, or double-sided): Φ against ρ·I·Ω
+    /// less the occluder's solid angle, relative (a patch is lit or not by its centre).
+    SHADOWED_FLUX: at_most 0.004, measured 0.00215
+}
+bounds::tolerance! {
+    /// A back face between the lamp and the floor: the floor's flux against without it, relative.
+    BACK_FACE: at_most 0.0, measured 0.0
+}
+bounds::tolerance! {
+    /// A textured, half-metallic floor's flux over a white one's against ρ = base colour ×
+    /// texture × (1 − metallic), the worst channel.
+    ALBEDO: at_most 4e-6, measured 2.04e-6
+}
+bounds::tolerance! {
+    /// Vertex colours: the flux's ratio against the colour, the worst channel.
+    VERTEX_COLOUR: at_most 0.0, measured 0.0
+}
+
 fn relative(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
@@ -92,11 +142,11 @@ fn a_small_patch_far_away_lights_by_the_point_form() {
     let point = (p.normal.dot(v) as f64) * (-n.dot(v) as f64) / (d2 * d2) / PI;
     let lit = LitPatches::new(&[p], DEFAULT_MAX_EDGE);
     let e = lit.irradiance_at(&Receiver { position: x, normal: n, albedo: Vec3::ONE });
-    assert!(relative(e.x, 2.0 * point) < 1e-5, "the sum {} against the point form {}", e.x, 2.0 * point);
+    POINT_FORM.assert("the sum against the point form", relative(e.x, 2.0 * point));
     // The polygon form of the same small patch agrees with it to (size / distance)².
     let polygon =
         polygon_factor(corners.map(Vec3::as_dvec3), DVec3::Y, p.patch.area as f64, x.as_dvec3(), n.as_dvec3());
-    assert!(relative(polygon, point) < 1e-4, "polygon {polygon} against point {point}");
+    POLYGON_FORM.assert("the polygon form against the point form", relative(polygon, point));
     // Nothing behind the patch or facing away from it.
     let below = Receiver { position: Vec3::new(0.0, -1.0, 0.0), normal: Vec3::Y, albedo: Vec3::ONE };
     assert_eq!(lit.irradiance_at(&below), DVec3::ZERO);
@@ -117,6 +167,7 @@ fn a_receiver_under_a_large_square_emitter_gets_its_analytic_form_factor() {
         .map(|patch| LitPatch { patch, normal: patch.normal, flux: Vec3::splat(patch.area) })
         .collect();
     assert!(patches.iter().all(|p| p.normal.abs_diff_eq(-Vec3::Y, 1e-6)), "facing down");
+    let mut errors = Vec::new();
     let lit = LitPatches::new(&patches, DEFAULT_MAX_EDGE);
     // Receivers facing up at various places under it, one of them within the near field.
     for (x, z, y) in
@@ -129,8 +180,9 @@ fn a_receiver_under_a_large_square_emitter_gets_its_analytic_form_factor() {
             .iter()
             .map(|&(a, b)| corner_form_factor(a, b, depth))
             .sum();
-        assert!(relative(e.x, f) < 1e-3, "at ({x}, {y}, {z}): E = {} against the form factor {f}", e.x);
+        errors.push(relative(e.x, f));
     }
+    FORM_FACTOR.assert("E against the rectangle's form factor, the worst receiver", bounds::worst(errors));
 }
 
 #[test]
@@ -161,7 +213,7 @@ fn patches_cover_their_triangles_exactly_and_are_no_larger_than_asked() {
                 0.5 * (b - a).cross(c - a).length()
             })
             .sum();
-        assert!(relative(area, triangles) < 1e-5, "patches {area} m², triangles {triangles} m²");
+        PATCH_AREA.assert(format!("{max_edge} m: the patches' area against the triangles'"), relative(area, triangles));
         let expected: u32 = vertices
             .chunks(3)
             .map(|t| {
@@ -170,12 +222,20 @@ fn patches_cover_their_triangles_exactly_and_are_no_larger_than_asked() {
             })
             .sum();
         assert_eq!(patches.len() as u32, expected, "n² patches a triangle");
-        for p in &patches {
+        let longest = bounds::worst(patches.iter().flat_map(|p| {
             let [a, b, c] = p.corners;
-            let longest = (b - a).length().max((c - b).length()).max((a - c).length());
-            assert!(longest <= max_edge * 1.0001, "a patch edge of {longest} m");
-            assert!((p.centre - (a + b + c) / 3.0).length() < 1e-5, "the centre is the centroid");
-        }
+            [b - a, c - b, a - c].map(|e| f64::from(e.length()))
+        }));
+        bounds::assert(bounds::at_most(
+            format!("{max_edge} m: the longest patch edge"),
+            longest,
+            f64::from(max_edge) * 1.0001,
+        ));
+        let off = bounds::worst(patches.iter().map(|p| {
+            let [a, b, c] = p.corners;
+            f64::from((p.centre - (a + b + c) / 3.0).length())
+        }));
+        CENTROID.assert(format!("{max_edge} m: a centre off its centroid"), off);
     }
 }
 
@@ -195,7 +255,7 @@ fn a_uniform_lamp_facing_a_plane_delivers_rho_times_intensity_times_its_solid_an
     // Φ = ∫ ρ·I·cos/d² dA over the floor = ρ·I·Ω, Ω the frustum's solid angle (2π/3).
     let expected = 0.6 * 3.0 * pyramid_solid_angle(1.0, 1.0);
     let total = lit.total_flux().x;
-    assert!(relative(total, expected) < 1e-3, "Φ = {total} W, ρ·I·Ω = {expected} W");
+    LAMP_FLUX.assert("Φ against ρ·I·Ω", relative(total, expected));
     assert_eq!(lit.len(), World::new(&scene).patches(DEFAULT_MAX_EDGE).len(), "every patch lit");
 
     let mut off = Headlamp::new(HeadlampProfile::default());
@@ -214,7 +274,7 @@ fn patches_the_frustums_edge_crosses_are_lit_in_part() {
     let expected = 0.6 * 3.0 * pyramid_solid_angle(1.0, 1.0);
     for max_edge in [0.15, 0.1, DEFAULT_MAX_EDGE] {
         let total = World::new(&scene).lit(&lamp, max_edge).total_flux().x;
-        assert!(relative(total, expected) < 2e-3, "{max_edge} m patches: Φ = {total} W, ρ·I·Ω = {expected} W");
+        FRUSTUM_EDGE.assert(format!("{max_edge} m patches: Φ against ρ·I·Ω"), relative(total, expected));
     }
 }
 
@@ -233,24 +293,41 @@ fn an_occluder_shadows_the_patches_behind_it_unless_it_is_a_back_face() {
     // (A patch is lit or not by its centre: the shadow's edge is placed to within a patch,
     // about 0.2 % of the flux here.)
     let expected = 0.6 * 3.0 * (pyramid_solid_angle(1.0, 1.0) - pyramid_solid_angle(0.2, 0.2));
-    assert!(relative(floor_flux(&lit), expected) < 5e-3, "Φ = {} W, expected {expected} W", floor_flux(&lit));
-    for p in lit.patches().iter().filter(|p| p.patch.triangle < 2) {
+    SHADOWED_FLUX.assert(
+        "one-sided occluder: the floor's Φ against ρ·I·Ω less its shadow",
+        relative(floor_flux(&lit), expected),
+    );
+    // The umbra (the central 0.38 m square) holds no lit patch: the nearest lit centre's
+    // distance from the middle, along x or z.
+    let nearest = bounds::least(lit.patches().iter().filter(|p| p.patch.triangle < 2).map(|p| {
         let c = p.patch.centre;
-        assert!(c.x.abs().max(c.z.abs()) > 0.19, "a lit patch at {c} in the umbra");
-    }
-    assert!(lit.patches().iter().any(|p| p.patch.triangle >= 2), "the occluder's top is lit itself");
-    assert!(floor_flux(&lit) < floor_flux(&unshadowed) * 0.96);
+        f64::from(c.x.abs()).max(f64::from(c.z.abs()))
+    }));
+    bounds::assert(bounds::at_least("the lit floor patch nearest the umbra's middle", nearest, 0.19));
+    let occluder_lit = lit.patches().iter().filter(|p| p.patch.triangle >= 2).count();
+    bounds::assert(bounds::at_least("the occluder's lit patches", occluder_lit as f64, 1.0));
+    bounds::assert(bounds::at_most(
+        "the shadowed floor's flux over the open floor's",
+        floor_flux(&lit) / floor_flux(&unshadowed),
+        0.96,
+    ));
 
     // Facing away from the lamp (single-sided, seen from behind): culled, as in every view.
     let mut back = floor.clone();
     square(&mut back, Vec3::new(0.0, 0.5, 0.0), 0.1, false, 1);
     let lit = World::new(&back).lit(&lamp, DEFAULT_MAX_EDGE);
     assert_eq!(floor_patches(&lit), floor_patches(&unshadowed), "a back face lets the light through");
-    assert!(relative(floor_flux(&lit), floor_flux(&unshadowed)) < 1e-9);
+    BACK_FACE.assert(
+        "a back face: the floor's flux against without it",
+        relative(floor_flux(&lit), floor_flux(&unshadowed)),
+    );
     // Double-sided, the same square shadows from either side.
     square(&mut floor, Vec3::new(0.0, 0.5, 0.0), 0.1, false, 2);
     let lit = World::new(&floor).lit(&lamp, DEFAULT_MAX_EDGE);
-    assert!(relative(floor_flux(&lit), expected) < 5e-3, "double-sided: Φ = {} W", floor_flux(&lit));
+    SHADOWED_FLUX.assert(
+        "double-sided occluder: the floor's Φ against ρ·I·Ω less its shadow",
+        relative(floor_flux(&lit), expected),
+    );
     let top = lit.patches().iter().filter(|p| p.patch.triangle >= 2).collect::<Vec<_>>();
     assert!(!top.is_empty() && top.iter().all(|p| p.normal.abs_diff_eq(Vec3::Y, 1e-6)), "lit on its lamp side");
 }
@@ -273,8 +350,15 @@ fn shadows_reach_the_receivers() {
     let lit = world.lit(&lamp, DEFAULT_MAX_EDGE);
     let floor_only: Vec<LitPatch> = lit.patches().iter().filter(|p| p.patch.triangle < 2).copied().collect();
     let dark = LitPatches::new(&floor_only, DEFAULT_MAX_EDGE).irradiance(&receivers);
-    for (o, d) in open.iter().zip(&dark) {
-        assert!(d[0] > 0.0 && d[0] < 0.97 * o[0], "shadowed {} against open {}", d[0], o[0]);
+    for (k, (o, d)) in open.iter().zip(&dark).enumerate() {
+        bounds::assert_all([
+            bounds::at_least(format!("receiver {k}: its light in the shadow"), f64::from(d[0]), f64::MIN_POSITIVE),
+            bounds::at_most(
+                format!("receiver {k}: its light in the shadow over in the open"),
+                f64::from(d[0] / o[0]),
+                0.97,
+            ),
+        ]);
     }
 }
 
@@ -295,7 +379,10 @@ fn patches_stay_where_they_are_whatever_the_lamp_does() {
         (a.patches().iter().map(|p| key(&p.patch)).collect(), b.patches().iter().map(|p| key(&p.patch)).collect());
     assert!(ka.is_subset(&all) && kb.is_subset(&all), "lit patches are the level's own patches, bit for bit");
     let both = ka.intersection(&kb).count();
-    assert!(both > 1000 && both < ka.len().min(kb.len()), "two views share {both} patches");
+    bounds::assert_all([
+        bounds::at_least("patches two views share", both as f64, 1001.0),
+        bounds::at_most("patches two views share", both as f64, std::cmp::min(ka.len(), kb.len()) as f64 - 1.0),
+    ]);
 }
 
 #[test]
@@ -317,11 +404,12 @@ fn albedo_is_the_gbuffers_base_colour_times_texture_times_one_minus_metallic() {
     let flux = |s: &Scene| World::new(s).lit(&lamp, DEFAULT_MAX_EDGE).total_flux();
     let ratio = flux(&scene) / flux(&plain);
     let expected = 0.8 * 0.50289 * (1.0 - 0.5 * 128.0 / 255.0);
-    assert!((ratio - DVec3::splat(expected)).abs().max_element() < 2e-4, "ρ = {ratio}, expected {expected}");
+    ALBEDO.assert("the flux's ratio against ρ", (ratio - DVec3::splat(expected)).abs().max_element());
     // Vertex colours multiply it too.
     for v in &mut plain.meshes[0].vertices {
         v.color = [0.5, 0.25, 1.0, 1.0];
     }
     let ratio = flux(&plain) / flux(&floor_under_a_lamp(1.0).0);
-    assert!((ratio - DVec3::new(0.5, 0.25, 1.0)).abs().max_element() < 1e-5, "{ratio}");
+    VERTEX_COLOUR
+        .assert("the flux's ratio against the vertex colour", (ratio - DVec3::new(0.5, 0.25, 1.0)).abs().max_element());
 }
