@@ -49,7 +49,8 @@ pub struct CheckArgs {
 
 #[derive(clap::Args, Debug, Default)]
 pub struct PlayArgs {
-    /// A level folder, a .zip of one, or a bare .gltf/.glb/.obj file [default: the shipped level].
+    /// Start this level at once, Esc opening the menu: a level folder, a .zip of one, or a bare
+    /// .gltf/.glb/.obj file [default: the main menu, its Play starting the shipped level].
     #[arg(long)]
     pub level: Option<PathBuf>,
     /// Also list the levels in this folder in the level menu (repeatable).

@@ -24,7 +24,8 @@ fn main() -> ExitCode {
     let result = match cli.command.unwrap_or(Command::Play(PlayArgs::default())) {
         Command::Check(args) => return game::check::run(&args),
         Command::Play(args) => {
-            game::play::run(&args.level.clone().unwrap_or_else(game::default_level), &args.levels_dirs)
+            let start = if args.level.is_some() { game::play::Start::InLevel } else { game::play::Start::MainMenu };
+            game::play::run(&args.level.clone().unwrap_or_else(game::default_level), &args.levels_dirs, start)
         }
         Command::Render(args) => game::render_cmd::run(&args),
         Command::Bench(args) => game::bench::run(&args),

@@ -79,24 +79,21 @@ fn cpu_note(adapter: &str, config: &Config) -> String {
     }
 }
 
-/// `headlamp play`: the main menu first, the config file loaded (and saved on change), the
-/// level's files watched for edits, and the level menu filled from the shipped levels, the
-/// user's levels folder and `levels_dirs`.
-pub fn run(level_path: &Path, levels_dirs: &[PathBuf]) -> anyhow::Result<()> {
-    let level = engine::scene::load_level(level_path)?;
-    let world = crate::sim::level_world(&level)?;
+/// Where `headlamp play` begins.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Start {
+    /// On the main menu (the brightness screen first, until it has been shown once).
+    MainMenu,
+    /// In the level at once, as `play --level X` asks (Quake's `+map`); Esc opens the menu.
+    InLevel,
+}
+
+/// `headlamp play`: the config file loaded (and saved on change), the level's files watched
+/// for edits, and the level menu filled from the shipped levels, the user's levels folder and
+/// `levels_dirs`.
+pub fn run(level_path: &Path, levels_dirs: &[PathBuf], start: Start) -> anyhow::Result<()> {
     let (config, config_path, warning) = user_config();
-    let sim = Simulation::new(&level, world, FixedClock::DEFAULT_TICK_RATE, crate::recording::fresh_seed());
-    let mut app = GameWindow::new(level, sim, TickSource::live(&config, None), config);
-    // No file yet: the first run, whose defaults may still follow the device (see `init`).
-    app.first_run = config_path.as_ref().is_some_and(|p| !p.exists());
-    app.config_path = config_path;
-    app.menus = Menus::new();
-    // A first start (or the first since the setting came) asks for the brightness first.
-    if !app.config.calibrated {
-        app.menus.calibrate();
-    }
-    app.watch_level(level_path);
+    let mut app = game_window(level_path, config, config_path, start)?;
     app.open_sound();
     // Loading and checking every level takes a moment: the menu says so meanwhile.
     let dirs = crate::level_list::level_dirs(levels_dirs);
@@ -107,6 +104,33 @@ pub fn run(level_path: &Path, levels_dirs: &[PathBuf]) -> anyhow::Result<()> {
         app.menus.show_warning(w);
     }
     engine::window::run("Headlamp", &mut app)
+}
+
+/// The game's window app for `level_path` with the player's `config` (read from `config_path`,
+/// where it is saved), its menus set for `start`, the level's files watched.
+pub fn game_window(
+    level_path: &Path,
+    config: Config,
+    config_path: Option<PathBuf>,
+    start: Start,
+) -> anyhow::Result<GameWindow> {
+    let level = engine::scene::load_level(level_path)?;
+    let world = crate::sim::level_world(&level)?;
+    let sim = Simulation::new(&level, world, FixedClock::DEFAULT_TICK_RATE, crate::recording::fresh_seed());
+    let mut app = GameWindow::new(level, sim, TickSource::live(&config, None), config);
+    // No file yet: the first run, whose defaults may still follow the device (see `init`).
+    app.first_run = config_path.as_ref().is_some_and(|p| !p.exists());
+    app.config_path = config_path;
+    app.menus = Menus::new();
+    match start {
+        Start::InLevel => app.menus.playing(),
+        // A first start (or the first since the setting came) asks for the brightness first;
+        // one that begins in a level leaves it for the next start on the menu.
+        Start::MainMenu if !app.config.calibrated => app.menus.calibrate(),
+        Start::MainMenu => {}
+    }
+    app.watch_level(level_path);
+    Ok(app)
 }
 
 /// The player's settings from their config file, where it is, and a warning to show when the
@@ -587,9 +611,18 @@ impl WindowApp for GameWindow {
                 self.config.target_fps = CPU_TARGET_FPS;
                 self.config.gi = plugin_gi::GiSettings::cpu_preset();
                 self.apply_config();
+            }
+            let note = cpu_note(&adapter.name, &self.config);
+            // Once per machine on the menus; Settings > Video says it on every visit.
+            let first_note = !self.config.cpu_note_shown;
+            if first_note {
+                self.menus.show_warning(note.clone());
+                self.config.cpu_note_shown = true;
+            }
+            self.menus.set_device_note(note);
+            if self.first_run || first_note {
                 self.save_config();
             }
-            self.menus.show_warning(cpu_note(&adapter.name, &self.config));
         }
         Ok(())
     }

@@ -241,6 +241,55 @@ fn the_cpu_note_says_whether_the_cpu_settings_are_in_use() {
     assert!(cpu_note("llvmpipe", &config).contains("uses the CPU settings"));
 }
 
+/// `play --level X` starts X at once; the menu is one Esc away. Without a level the menus come
+/// first: the brightness screen until it has been shown, then the main menu.
+#[test]
+fn play_with_a_level_starts_in_it_and_the_menu_is_one_esc_away() {
+    let cellar = crate::default_level();
+    let mut app = game_window(&cellar, Config::default(), None, Start::InLevel).unwrap();
+    assert_eq!(app.menus.screen(), Screen::Playing);
+    app.update(&Input::default(), 0.1);
+    assert!(app.sim.state.tick > 0, "the world runs from the first frame");
+    app.update(&press(KeyCode::Escape), 0.1);
+    assert_eq!(app.menus.screen(), Screen::Paused);
+
+    let first = game_window(&cellar, Config::default(), None, Start::MainMenu).unwrap();
+    assert_eq!(first.menus.screen(), Screen::Calibration);
+    let calibrated = Config { calibrated: true, ..Config::default() };
+    let later = game_window(&cellar, calibrated, None, Start::MainMenu).unwrap();
+    assert_eq!(later.menus.screen(), Screen::MainMenu);
+}
+
+/// On a device that renders on the CPU the note on its settings shows on the menus once per
+/// machine (the config file remembers it), and Settings > Video says it every time.
+#[test]
+fn the_cpu_note_shows_once_per_machine_and_settings_keeps_it() {
+    let dir = std::env::temp_dir().join(format!("headlamp-cpu-note-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("config.toml");
+    let _ = std::fs::remove_file(&path);
+    // Lavapipe: a CPU device wherever the test runs.
+    let gpu = Gpu::lavapipe().unwrap_or_else(|e| panic!("{e}"));
+    let format = engine::wgpu::TextureFormat::Rgba8UnormSrgb;
+    let start = |config: Config| {
+        let mut app = game_window(&crate::default_level(), config, Some(path.clone()), Start::InLevel).unwrap();
+        app.config.gi.enabled = false;
+        app.init(&gpu, format).unwrap();
+        app
+    };
+    let first = start(Config::default());
+    let warning = first.menus.warning().expect("the first start shows the note");
+    assert!(warning.contains("renders on the CPU"), "{warning}");
+    assert_eq!(first.menus.device_note(), Some(warning));
+    let (saved, problem) = Config::load_or_default(&path);
+    assert!(problem.is_none() && saved.cpu_note_shown, "the file remembers the note: {problem:?}");
+
+    let second = start(saved);
+    assert_eq!(second.menus.warning(), None, "shown once");
+    assert!(second.menus.device_note().is_some_and(|n| n.contains("renders on the CPU")));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// A copy of the Cellar, to edit: `cellar` in a folder of its own.
 fn cellar_copy(tag: &str) -> PathBuf {
     let parent = std::env::temp_dir().join(format!("headlamp-live-reload-{}-{tag}", std::process::id()));

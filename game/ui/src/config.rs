@@ -52,6 +52,10 @@ declare::config_file! {
             vsync: bool = true;
             /// The frame-rate counter in a corner.
             show_fps: bool = false;
+            /// The note on a device that renders on the CPU has been shown (once per machine;
+            /// Settings > Video keeps saying it).
+            cpu_note_shown: bool = false,
+                "the note on rendering on the CPU has been shown (false: it shows at the next start)";
 
             [comfort]
             /// Picture brightness in stops (exposure × 2^brightness), in [`Config::BRIGHTNESS_RANGE`].

@@ -165,6 +165,21 @@ impl Menus {
         self.warning = Some(text.into());
     }
 
+    /// The warning the menus show, until dismissed.
+    pub fn warning(&self) -> Option<&str> {
+        self.warning.as_deref()
+    }
+
+    /// What Settings > Video says of the device first (e.g. that it renders on the CPU, and
+    /// with which settings): shown there on every visit, where a warning is shown once.
+    pub fn set_device_note(&mut self, text: impl Into<String>) {
+        self.settings.device_note = Some(text.into());
+    }
+
+    pub fn device_note(&self) -> Option<&str> {
+        self.settings.device_note.as_deref()
+    }
+
     /// Draws the current screen and handles its clicks and keys. `input` is the frame's input
     /// as `WindowApp::update` saw it (its presses are cleared before `WindowApp::ui` runs, so
     /// the game keeps a copy); Esc resumes from Paused and goes back from Settings.

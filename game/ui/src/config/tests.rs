@@ -61,6 +61,7 @@ fn changed() -> Config {
         target_fps: 24.5,
         vsync: false,
         show_fps: true,
+        cpu_note_shown: true,
         bindings,
         gamepad,
         gi,

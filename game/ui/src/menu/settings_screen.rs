@@ -63,6 +63,8 @@ pub(super) struct SettingsScreen {
     notice: Option<String>,
     /// Gamepads connected as of this frame, said on the Gamepad tab.
     pads: usize,
+    /// What the Video tab says of the device first, e.g. that it renders on the CPU.
+    pub device_note: Option<String>,
 }
 
 impl SettingsScreen {
@@ -135,7 +137,13 @@ impl SettingsScreen {
                         Tab::Controls => controls(ui, config),
                         Tab::Bindings => self.bindings(ui, config),
                         Tab::Gamepad => self.gamepad(ui, config),
-                        Tab::Video => video(ui, config),
+                        Tab::Video => {
+                            if let Some(note) = &self.device_note {
+                                ui.label(RichText::new(note).color(NOTICE));
+                                ui.separator();
+                            }
+                            video(ui, config)
+                        }
                         Tab::Audio => audio(ui, config),
                         Tab::Gi => {
                             gi_panel::sliders(ui, &mut config.gi);

@@ -334,6 +334,23 @@ fn controls_sliders_change_the_config() {
     assert!(h.config.invert_y);
 }
 
+/// The device's note (e.g. that it renders on the CPU) heads the Video tab on every visit,
+/// after its warning on the menus has been dismissed.
+#[test]
+fn the_video_tab_says_what_the_device_note_says() {
+    let mut h = Harness::new();
+    let note = "llvmpipe renders on the CPU";
+    h.menus.show_warning(note);
+    h.menus.set_device_note(note);
+    h.settle();
+    assert_eq!(h.click("OK"), None, "dismissing the warning changes no setting");
+    h.settle();
+    assert!(!h.shows(note), "the warning is gone: {:?}", h.shown);
+    h.open_settings_tab("Video");
+    h.settle();
+    assert!(h.shows(note), "{:?}", h.shown);
+}
+
 #[test]
 fn video_and_gi_settings_change_the_config() {
     let mut h = Harness::new();
