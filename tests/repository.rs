@@ -212,3 +212,103 @@ fn no_test_reads_the_environment() {
         found.join("\n")
     );
 }
+
+/// Every Markdown file of the repository (README.md, MODDING.md, docs/, any other), as
+/// (relative path, text).
+fn markdown_files() -> Vec<(String, String)> {
+    let files: Vec<_> = text_files().into_iter().filter(|(file, _)| file.ends_with(".md")).collect();
+    assert!(files.iter().any(|(f, _)| f == "docs/gi.md"), "the scan sees the docs");
+    files
+}
+
+/// The lines of Markdown `text` outside code fences, as (line number from 1, line).
+fn prose_lines(text: &str) -> Vec<(usize, &str)> {
+    let mut fenced = false;
+    let mut out = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+        } else if !fenced {
+            out.push((n + 1, line));
+        }
+    }
+    out
+}
+
+/// The anchors of a Markdown file's headings as GitHub makes them: lower case, spaces to `-`,
+/// all but letters, digits, `-` and `_` dropped; a repeated one gets `-1`, `-2`, ….
+fn anchors(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut slugs: Vec<String> = Vec::new();
+    for (_, line) in prose_lines(text) {
+        let title = line.trim_start_matches('#');
+        if title.len() == line.len() || !title.starts_with(' ') {
+            continue;
+        }
+        let slug: String = title
+            .trim()
+            .to_lowercase()
+            .chars()
+            .filter_map(|c| match c {
+                ' ' => Some('-'),
+                c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
+                _ => None,
+            })
+            .collect();
+        let seen = slugs.iter().filter(|s| **s == slug).count();
+        out.push(if seen == 0 { slug.clone() } else { format!("{slug}-{seen}") });
+        slugs.push(slug);
+    }
+    out
+}
+
+/// Each link target on `line`, `[text](target)` or `![alt](target)`, without a title.
+fn link_targets(line: &str) -> Vec<&str> {
+    line.match_indices("](")
+        .filter_map(|(at, _)| {
+            let rest = &line[at + 2..];
+            let end = rest.find([')', ' '])?;
+            Some(&rest[..end])
+        })
+        .collect()
+}
+
+#[test]
+fn markdown_links_resolve() {
+    let root = root();
+    let files = markdown_files();
+    let mut found = Vec::new();
+    for (file, text) in &files {
+        for (n, line) in prose_lines(text) {
+            for target in link_targets(line) {
+                if target.contains("://") || target.starts_with("mailto:") {
+                    continue;
+                }
+                let (path, anchor) = target.split_once('#').unwrap_or((target, ""));
+                let linked =
+                    if path.is_empty() { root.join(file) } else { root.join(file).parent().unwrap().join(path) };
+                if !linked.exists() {
+                    found.push(format!("{file}:{n}: '{target}': no such file"));
+                } else if !anchor.is_empty() && linked.extension().is_some_and(|e| e == "md") {
+                    let headings = anchors(&std::fs::read_to_string(&linked).unwrap());
+                    if !headings.iter().any(|a| a == anchor) {
+                        found.push(format!("{file}:{n}: '{target}': no heading makes #{anchor}"));
+                    }
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "links in the docs must lead somewhere:\n{}", found.join("\n"));
+}
+
+#[test]
+fn the_link_check_reads_links_and_headings_as_github_does() {
+    let line = "see [the method](docs/gi.md#views) and ![a picture](levels/cellar/preview.png \"title\")";
+    assert_eq!(link_targets(line), ["docs/gi.md#views", "levels/cellar/preview.png"]);
+    let text = "# Title\n\n```\n# a comment in a code block\n```\n\
+                ### The article's method (`gi.method = article`)\n## 2026-12-04: 640×360, a/b\n## Views\n## Views\n";
+    assert_eq!(
+        anchors(text),
+        ["title", "the-articles-method-gimethod--article", "2026-12-04-640360-ab", "views", "views-1"]
+    );
+}
