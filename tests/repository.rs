@@ -312,3 +312,81 @@ fn the_link_check_reads_links_and_headings_as_github_does() {
         ["title", "the-articles-method-gimethod--article", "2026-12-04-640360-ab", "views", "views-1"]
     );
 }
+
+/// Phrases that tell how the project came to be rather than what it is. History lives in
+/// `git log`, and measurements in docs/benchmarks.md's dated tables, not in the docs' prose.
+const NARRATION: &[&str] = &[
+    "until now",
+    "until then",
+    "until this",
+    "last stop",
+    "this stop",
+    "previous stop",
+    "stops ago",
+    "this issue",
+    "the issue's",
+    "no longer",
+    "used to",
+    "since removed",
+    "before this change",
+    "after this change",
+];
+
+/// Where `text` (Markdown) tells its history: (line from 1, the phrase). Phrases are matched
+/// word by word, so one wrapped across lines is found at its first word's line, and in any
+/// case; "used to" in the passive ("is used to draw") is not history.
+fn narration(text: &str) -> Vec<(usize, &'static str)> {
+    let words: Vec<(String, usize)> = prose_lines(text)
+        .into_iter()
+        .flat_map(|(n, line)| {
+            line.split_whitespace()
+                .map(move |w| (w.trim_matches(|c: char| !c.is_alphanumeric()).to_ascii_lowercase(), n))
+        })
+        .collect();
+    let mut found = Vec::new();
+    for i in 0..words.len() {
+        for phrase in NARRATION {
+            let here = words[i..].iter().map(|(w, _)| w.as_str());
+            if !here.take(phrase.split(' ').count()).eq(phrase.split(' ')) {
+                continue;
+            }
+            let before = if i > 0 { words[i - 1].0.as_str() } else { "" };
+            if *phrase == "used to" && ["is", "are", "be", "been"].contains(&before) {
+                continue;
+            }
+            found.push((words[i].1, *phrase));
+        }
+    }
+    found
+}
+
+#[test]
+fn no_doc_tells_its_history() {
+    let mut found = Vec::new();
+    for (file, text) in markdown_files() {
+        for (n, phrase) in narration(&text) {
+            found.push(format!("{file}:{n}: \"{phrase}\""));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "docs describe the project as it is; how it got there is git log's (or a dated table in \
+         docs/benchmarks.md):\n{}",
+        found.join("\n")
+    );
+}
+
+#[test]
+fn the_history_check_catches_what_it_is_for() {
+    let sample = "The flicker, two stops\n  ago → now: 0.64 %.\nIt Used To be 45 rows; the\
+                  \nsampler is used to draw.\n```\nno longer (in a code block)\n```\n";
+    assert_eq!(narration(sample), [(1, "stops ago"), (3, "used to")]);
+    assert_eq!(narration("Light volumes no longer exist."), [(1, "no longer")]);
+    assert!(narration("The cuts split a light while it is wider than 0.45 of its distance.").is_empty());
+}
+
+#[test]
+fn the_readme_is_a_tour() {
+    let lines = std::fs::read_to_string(root().join("README.md")).unwrap().lines().count();
+    assert!(lines <= 150, "README.md has {lines} lines: it is a tour of 150 at most, the depth is docs/'s");
+}
