@@ -1,5 +1,5 @@
 // Shared declarations of the engine's core passes: the per-frame globals (group 0).
-// Units are DESIGN.md's: radiance in W·sr⁻¹·m⁻², intensity in W/sr, metres.
+// Units are docs/gi.md's: radiance in W·sr⁻¹·m⁻², intensity in W/sr, metres.
 
 const PI: f32 = 3.14159265358979;
 

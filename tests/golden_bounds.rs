@@ -223,8 +223,8 @@ fn every_golden_shows_something_and_belongs_to_a_shot() {
         let lit = g.pixels().filter(|p| p[0] > 8 || p[1] > 8 || p[2] > 8).count() as f64;
         let share = lit / f64::from(g.width() * g.height());
         // A near-black golden checks almost nothing: at least a tenth of it lit, and a mean
-        // luminance over 0.1 % of white (the darkest, the Cellar's hall, is 0.17 %; the frame
-        // of the lamp just switched off, once a golden, was 0.0001 %).
+        // luminance over 0.1 % of white (the darkest, the Cellar's hall, is 0.17 %; a frame of
+        // the lamp just switched off reads 0.0001 %).
         bounds::assert_all([
             bounds::at_least(format!("{name}: the lit share"), share, 0.1),
             bounds::at_least(format!("{name}: the mean luminance"), mean_luminance(&g), 0.001),

@@ -332,11 +332,27 @@ const NARRATION: &[&str] = &[
     "after this change",
 ];
 
-/// Where `text` (Markdown) tells its history: (line from 1, the phrase). Phrases are matched
-/// word by word, so one wrapped across lines is found at its first word's line, and in any
-/// case; "used to" in the passive ("is used to draw") is not history.
+/// Where `text` (Markdown) tells its history: (line from 1, the phrase).
 fn narration(text: &str) -> Vec<(usize, &'static str)> {
-    let words: Vec<(String, usize)> = prose_lines(text)
+    narration_in(prose_lines(text), NARRATION)
+}
+
+/// [`NARRATION`] less what code says of what it does at run time ("the crawler no longer sees
+/// you", "until then the old level runs").
+fn code_narration() -> Vec<&'static str> {
+    NARRATION.iter().copied().filter(|p| !["no longer", "until then", "until this"].contains(p)).collect()
+}
+
+/// The comments of Rust or WGSL `code`, as (line number from 1, the text after `//`).
+fn comment_lines(code: &str) -> Vec<(usize, &str)> {
+    code.lines().enumerate().filter_map(|(n, line)| line.find("//").map(|at| (n + 1, &line[at + 2..]))).collect()
+}
+
+/// Where `lines` tell their history: (line from 1, the phrase). Phrases are matched word by
+/// word, so one wrapped across lines is found at its first word's line, and in any case; "used
+/// to" in the passive ("is used to draw") is not history.
+fn narration_in(lines: Vec<(usize, &str)>, phrases: &[&'static str]) -> Vec<(usize, &'static str)> {
+    let words: Vec<(String, usize)> = lines
         .into_iter()
         .flat_map(|(n, line)| {
             line.split_whitespace()
@@ -345,7 +361,7 @@ fn narration(text: &str) -> Vec<(usize, &'static str)> {
         .collect();
     let mut found = Vec::new();
     for i in 0..words.len() {
-        for phrase in NARRATION {
+        for phrase in phrases {
             let here = words[i..].iter().map(|(w, _)| w.as_str());
             if !here.take(phrase.split(' ').count()).eq(phrase.split(' ')) {
                 continue;
@@ -377,12 +393,34 @@ fn no_doc_tells_its_history() {
 }
 
 #[test]
+fn no_comment_tells_its_history() {
+    let mut found = Vec::new();
+    let code = text_files().into_iter().filter(|(file, _)| file.ends_with(".rs") || file.ends_with(".wgsl"));
+    for (file, text) in code {
+        // This file names the phrases it looks for.
+        if file == "tests/repository.rs" {
+            continue;
+        }
+        for (n, phrase) in narration_in(comment_lines(&text), &code_narration()) {
+            found.push(format!("{file}:{n}: \"{phrase}\""));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "comments say why the code is as it is; how it got there is git log's:\n{}",
+        found.join("\n")
+    );
+}
+
+#[test]
 fn the_history_check_catches_what_it_is_for() {
     let sample = "The flicker, two stops\n  ago → now: 0.64 %.\nIt Used To be 45 rows; the\
                   \nsampler is used to draw.\n```\nno longer (in a code block)\n```\n";
     assert_eq!(narration(sample), [(1, "stops ago"), (3, "used to")]);
     assert_eq!(narration("Light volumes no longer exist."), [(1, "no longer")]);
     assert!(narration("The cuts split a light while it is wider than 0.45 of its distance.").is_empty());
+    let code = "let x = 1; // a wall used to\n/// stop it, and since this stop\nlet s = \"used to\"; let t = 2;\n";
+    assert_eq!(narration_in(comment_lines(code), &code_narration()), [(1, "used to"), (2, "this stop")]);
 }
 
 #[test]

@@ -161,8 +161,7 @@ fn the_diffuse_part_is_exactly_one_minus_f0_times_rho_over_pi() {
     }
 }
 
-/// glTF's rough dielectric (metallic 0, roughness 1) against the Lambertian surface every level
-/// was before: under the headlamp (at the eye) its radiance is (0.96·ρ·cos + 0.01)/π·I/d², the
+/// glTF's rough dielectric (metallic 0, roughness 1) against a Lambertian surface: under the headlamp (at the eye) its radiance is (0.96·ρ·cos + 0.01)/π·I/d², the
 /// diffuse lobe losing the 4 % the dielectric's Fresnel reflects and the broad GGX lobe giving
 /// back F0/(4π) (D = 1/π, V = 1/(4 cos) at α = 1): the ratio to ρ/π·cos·I/d² is
 /// 0.96 + 0.01/(ρ·cos), within 2 % wherever ρ·cos lies between 0.17 and 0.5 (albedo 0.3–0.45

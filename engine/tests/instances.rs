@@ -1,4 +1,4 @@
-//! Dynamic mesh instances: drawn into the camera's G-buffer (their colour, lit by DESIGN.md's
+//! Dynamic mesh instances: drawn into the camera's G-buffer (their colour, lit by docs/gi.md's
 //! radiometry, their emission) and into the detached lamp's view (they cast its shadows), with
 //! normals transformed by the inverse-transpose; no instances leave the frame as it was.
 

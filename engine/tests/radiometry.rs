@@ -1,4 +1,4 @@
-//! Direct light matches DESIGN.md's radiometry: L_d = ρ/π · I(ω) · max(0, n·l) / d², read back
+//! Direct light matches docs/gi.md's radiometry: L_d = ρ/π · I(ω) · max(0, n·l) / d², read back
 //! as linear radiance (the values `headlamp render --view direct --out x.exr` writes).
 
 use std::f32::consts::PI;

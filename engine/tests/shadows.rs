@@ -1,4 +1,4 @@
-//! The detached headlamp: its shadow map keeps DESIGN.md's radiometry (no self-shadowing acne
+//! The detached headlamp: its shadow map keeps docs/gi.md's radiometry (no self-shadowing acne
 //! on facing or tilted planes), occluders cast exact umbrae, and its own G-buffer (`lamp.*`)
 //! holds the world positions and normals it sees.
 

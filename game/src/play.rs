@@ -50,8 +50,8 @@ pub const CPU_RENDER_SCALE: f32 = 0.5;
 pub const CPU_TARGET_FPS: f32 = 20.0;
 
 /// The rows of indirect light (`gi.min_rows`) dynamic resolution falls back to when even its
-/// lowest render scale cannot hold the frame rate: receivers of 8×8 pixels at 640×360, the CPU
-/// settings before they rose to 72 rows (a slower 2-core VM settles at the floor with these).
+/// lowest render scale cannot hold the frame rate: receivers of 8×8 pixels at 640×360 (a
+/// slower 2-core VM settles at the floor with these).
 pub const STARVED_GI_ROWS: u32 = 45;
 
 /// What the main menu says on a CPU device: the settings that keep it playable, and whether

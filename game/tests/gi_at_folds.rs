@@ -1,8 +1,8 @@
 //! The GI where two walls meet, as a pan slides the fold across its receivers: the receivers
-//! next to the fold are lit as the world-fixed reference says in every frame. (A receiver that
-//! fell on the fold's pixel used to go a third dark for that frame: its light comes half from
-//! the wall across the fold, most of it from within a few pixels of the corner, finer than
-//! the senders there.)
+//! next to the fold are lit as the world-fixed reference says in every frame. (A receiver on
+//! the fold's pixel itself would go a third dark for that frame: its light comes half from the
+//! wall across the fold, most of it from within a few pixels of the corner, finer than the
+//! senders there; receivers are moved off it.)
 
 mod common;
 
@@ -24,8 +24,8 @@ const STRIP: u32 = 4;
 
 bounds::tolerance! {
     /// The 4 pixels next to the box's fold, as a pan slides it across the receivers: the light
-    /// against the world reference's, relative, the worst frame (before receivers on a fold's
-    /// pixel were moved off it: 37 %).
+    /// against the world reference's, relative, the worst frame (37 % with receivers left on
+    /// the fold's pixel).
     NEXT_TO_THE_FOLD: at_most 0.2, measured 0.193
 }
 

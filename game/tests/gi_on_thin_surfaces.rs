@@ -1,8 +1,8 @@
 //! The GI on a surface narrower than a receiver's cell, as a pan slides it across the cells: the
 //! Cellar's doorway at 45 rows (a receiver for 8×8 pixels, the CPU settings' fallback), whose
 //! jamb is a strip a few pixels wide. Its pixels are lit as the world-fixed reference says in
-//! every frame. (A receiver used to be evaluated on its cell's centre only, so the jamb had one
-//! in the frames where a centre fell on it and took the wall's light in the others.)
+//! every frame. (A receiver evaluated on its cell's centre only would give the jamb one in the
+//! frames where a centre fell on it and the wall's light in the others.)
 
 mod common;
 

@@ -32,8 +32,8 @@ declare::settings! {
         resolution_scale: f32 = 0.125, 0.0625..=1.0, "indirect target size relative to the view";
         /// 2: the receivers of each 2×2 share the evaluation of their tile's lights (each
         /// evaluates a quarter and borrows the rest from neighbours on its surface): about 4×
-        /// faster on smooth surfaces. 1: every receiver evaluates every light. (A 4×4 pattern
-        /// was tried: its wider reconstruction cost more than it saved, and the error grew.)
+        /// faster on smooth surfaces. 1: every receiver evaluates every light. (A 4×4 pattern's
+        /// wider reconstruction costs more than it saves, and its error is larger.)
         interleave: u32 = 2, 1..=2, "2: neighbours share the evaluation of lights (faster); 1: each does all";
         /// Fewer only when the view has fewer: the light's variation across a room needs about
         /// this many. Lower is faster and blurrier; the CPU preset uses 84.
@@ -95,8 +95,8 @@ impl declare::Number for Method {
     }
 }
 
-/// Settings of the light-volume GI (before the pyramid gather) that older replays and config
-/// files still name: accepted and ignored.
+/// Settings that older replays and config files name and the GI does not have (a fixed
+/// cutoff and minimum distance): accepted and ignored.
 pub const RETIRED: &[&str] = &["cutoff", "d_min"];
 
 impl GiSettings {
@@ -111,7 +111,7 @@ impl GiSettings {
             return Ok(());
         }
         if RETIRED.contains(&name) {
-            log::info!("gi.{name} no longer exists (the GI gathers from a light pyramid); ignored");
+            log::info!("gi.{name} is not a setting of this GI (it gathers from a light pyramid); ignored");
             return Ok(());
         }
         let Some(info) = Self::FIELDS.iter().find(|f| f.name == name) else {

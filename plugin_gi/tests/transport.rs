@@ -1,4 +1,4 @@
-//! The GI against the exact one bounce: transport of DESIGN.md's formulas, on lavapipe.
+//! The GI against the exact one bounce: transport of docs/gi.md's formulas, on lavapipe.
 
 mod common;
 
@@ -553,8 +553,7 @@ fn a_lamp_facing_the_void_lights_nothing_indirectly() {
 /// finest is taken as the truth: the 3× picture must lie much closer to it than the 1× one.
 /// Receivers at a silhouette or a fold are left out (rasterised at three sizes, a ray that
 /// grazes an edge may land on either side of it).
-/// `GiHandle::set_reference_stride(3)` at 3× the size (what `bench --pan --reference-senders 3`
-/// did before the world-fixed reference) evaluates only
+/// `GiHandle::set_reference_stride(3)` at 3× the size evaluates only
 /// the centre pixel of each 3×3 block: those must be exactly the pixels the whole reference has
 /// there (same receiver, same senders, same sum), and the rest of each block black.
 #[test]

@@ -1,7 +1,7 @@
 //! The GI as the camera turns: its receivers and senders move with the picture, so turning by
 //! a fraction of a receiver's cell moves the indirect light with the picture instead of
-//! resampling it. (Their grids used to be fixed to the screen: every pixel of a pan took its
-//! light from other points of the walls.)
+//! resampling it. (Grids fixed to the screen would give every pixel of a pan its light from
+//! other points of the walls each frame.)
 
 mod common;
 

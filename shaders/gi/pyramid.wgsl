@@ -198,7 +198,7 @@ fn block_node(t: vec2u, k: u32, view: vec2u, id: vec2u) -> Node {
     let limit = params.merge_distance * length(node.position - globals.lamp_pos.xyz);
     node.merged = select(0u, 1u, agreement >= params.cos_merge && length(hi - lo) <= limit);
     // A coherent block is a patch of its area, sized as one texel is (the disc of that area),
-    // so the cuts split it as they split the texel that used to stand for it; an incoherent one
+    // so the cuts split it as they would split one texel of that area; an incoherent one
     // reaches as far as its farthest texel.
     let bound = length(max(node.position - lo, hi - node.position)) + reach * f32(step);
     node.extent = select(bound, sqrt(node.area / PI), node.merged == 1u);

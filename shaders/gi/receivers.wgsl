@@ -3,9 +3,9 @@
 // records the texel in `receiver_texels` for the gather and temporal passes). A receiver
 // stands for a cell of view pixels and is evaluated on one G-buffer texel of it: the centre,
 // unless the centre's surface is also at a neighbouring cell's centre and another part of the
-// cell shows a surface that no neighbouring centre does. A door's jamb or a lintel narrower
-// than a cell was otherwise evaluated only in the frames where a centre happened to fall on
-// it, and in the others took the wall's light, so it blinked as the view slid the cells over
+// cell shows a surface that no neighbouring centre does. Evaluated on centres alone, a door's
+// jamb or a lintel narrower than a cell would be lit only in the frames where a centre fell
+// on it, and take the wall's light in the others, blinking as the view slid the cells over
 // it. The cell's centre surface is then evaluated by its neighbour, a cell away. The composite
 // still weighs each sample by its cell's centre (at most half a cell off); the temporal pass
 // looks up a moved receiver's history as far from where its point was as it lies from the

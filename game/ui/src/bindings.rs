@@ -292,8 +292,8 @@ pub struct KeyBindings {
 }
 
 impl Default for KeyBindings {
-    /// W/S/A/D, Space, C or Left Ctrl, Left Shift, left mouse, R, F, G, Q: what the game had
-    /// before bindings were configurable, plus fire, reload and throw.
+    /// W/S/A/D, Space, C or Left Ctrl, Left Shift, left mouse, R, F, G, Q: the keys of most
+    /// first-person games, and the lamp's on the left hand's reach.
     fn default() -> Self {
         let key = |k| Some(Binding::Key(k));
         let mut slots = [[None; SLOTS]; Action::ALL.len()];

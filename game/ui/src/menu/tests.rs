@@ -417,8 +417,8 @@ fn a_game_is_under_way_except_on_the_main_menu_and_its_settings() {
     assert!(h.menus.in_game(), "settings from the pause menu");
 }
 
-/// The settings panel keeps its place from its first drawn frame on (it used to grow, and
-/// move, over its first frames, so a click aimed at what was shown could miss).
+/// The settings panel keeps its place from its first drawn frame on (a panel that grew, and
+/// moved, over its first frames would make a click aimed at what was shown miss).
 #[test]
 fn the_settings_panel_does_not_move_once_shown() {
     let mut h = Harness::new();
