@@ -53,10 +53,12 @@ engine::gpu_struct! {
         pub article_interleave: u32,
         /// The article method's fine light volumes, in sizes of their coarse lights.
         pub volume_reach: f32,
-        /// The whole cells the receivers' grid has stepped back, mod 12 each way (x | y << 16):
-        /// the gather's 2×2 interleave follows their parity, the article's sub-images them.
+        /// The whole cells the receivers' grid has stepped back, mod RECEIVER_PERIOD each way
+        /// (x | y << 16; see `grids`): the gather's 2×2 interleave follows their parity, the
+        /// article's sub-images them.
         pub receiver_steps: u32,
-        /// The periods the senders' grid has stepped back, + 2048 each way (x | y << 16).
+        /// The periods the senders' grid has stepped back, plus SENDER_STEPS_OFFSET, each way
+        /// (x | y << 16).
         pub sender_steps: u32,
         pub pad: [u32; 2],
         /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin,

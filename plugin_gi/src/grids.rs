@@ -14,6 +14,14 @@ use engine::glam::Vec3;
 /// many blocks at a time, so the pyramid's four finest levels keep their grouping as it does.
 pub(crate) const SENDER_PAD: u32 = 8;
 
+/// The receivers' grid's steps are kept mod this: a multiple of every interleave side (1 to 4),
+/// so each receiver keeps its class as the grid steps.
+pub(crate) const RECEIVER_PERIOD: u32 = 12;
+
+/// Added to the senders' grid's steps so that they stay positive in their 16 bits: a turn moves
+/// the picture by a few thousand pixels at most, a few hundred periods.
+pub(crate) const SENDER_STEPS_OFFSET: u32 = 2048;
+
 /// The grids of one frame (GiParams' `receiver_offset`, `sender_offset`, `receiver_steps`,
 /// `sender_steps`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -23,12 +31,12 @@ pub(crate) struct Grids {
     /// How many lamp-view texels before the view's corner the flux G-buffer's first block
     /// begins, 0 to SENDER_PAD blocks (0 where its texels are single lamp-view texels).
     pub sender_offset: [f32; 2],
-    /// The whole cells the receivers' grid has stepped back, mod 12 (a multiple of every
-    /// interleave side, 1 to 4), across and down: the gather's 2×2 interleave pattern follows
-    /// their parity and the article's N×N sub-images them, so a world point keeps its class.
+    /// The whole cells the receivers' grid has stepped back, mod RECEIVER_PERIOD, across and
+    /// down: the gather's 2×2 interleave pattern follows their parity and the article's N×N
+    /// sub-images them, so a world point keeps its class.
     pub receiver_steps: [u32; 2],
-    /// The whole periods (SENDER_PAD blocks) the senders' grid has stepped back, + 2048
-    /// (a turn moves the picture by a few thousand pixels at most), across and down: each
+    /// The whole periods (SENDER_PAD blocks) the senders' grid has stepped back, plus
+    /// SENDER_STEPS_OFFSET, across and down: each
     /// moves the content of the flux G-buffer SENDER_PAD blocks on, and the article's lights
     /// keep their subsets by it.
     pub sender_steps: [u32; 2],
@@ -55,8 +63,14 @@ impl Grids {
         Self {
             receiver_offset: [(cells(0).rem_euclid(1.0) - 0.5) as f32, (cells(1).rem_euclid(1.0) - 0.5) as f32],
             sender_offset: [senders(0), senders(1)],
-            receiver_steps: [0, 1].map(|i| cells(i).floor().rem_euclid(12.0) as u32),
-            sender_steps: [0, 1].map(|i| if block > 1 { ((moved[i] / period).floor() + 2048.0) as u32 } else { 2048 }),
+            receiver_steps: [0, 1].map(|i| cells(i).floor().rem_euclid(f64::from(RECEIVER_PERIOD)) as u32),
+            sender_steps: [0, 1].map(|i| {
+                if block > 1 {
+                    ((moved[i] / period).floor() + f64::from(SENDER_STEPS_OFFSET)) as u32
+                } else {
+                    SENDER_STEPS_OFFSET
+                }
+            }),
         }
     }
 }
@@ -91,8 +105,8 @@ mod tests {
         let further = Grids::of(&turned(3.0, 0.0), SIZE, LOW, 4);
         assert!((further.receiver_offset[0] + 0.25).abs() < 1e-4, "{further:?}");
         assert_eq!(further.receiver_steps, [1, 0]);
-        // Turned right by as much: a cell the other way, 11 mod 12.
-        assert_eq!(Grids::of(&turned(-3.0, 0.0), SIZE, LOW, 4).receiver_steps, [11, 0]);
+        // Turned right by as much: a cell the other way, mod the period.
+        assert_eq!(Grids::of(&turned(-3.0, 0.0), SIZE, LOW, 4).receiver_steps, [RECEIVER_PERIOD - 1, 0]);
         // Looking up moves the picture down, rows likewise.
         let up = Grids::of(&turned(0.0, 1.0), SIZE, LOW, 4);
         assert!((up.receiver_offset[1] - 0.25).abs() < 1e-4, "{up:?}");
@@ -100,7 +114,8 @@ mod tests {
         // A whole period of blocks (32 pixels) later both grids are where they were after one
         // pixel.
         let period = Grids::of(&turned(33.0, 0.0), SIZE, LOW, 4);
-        assert_eq!((level.sender_steps, period.sender_steps), ([2048, 2048], [2049, 2048]));
+        let offset = SENDER_STEPS_OFFSET;
+        assert_eq!((level.sender_steps, period.sender_steps), ([offset, offset], [offset + 1, offset]));
         assert!((period.sender_offset[0] - 31.0).abs() < 1e-3, "{period:?}");
         assert!((period.receiver_offset[0] - 0.25).abs() < 1e-4, "{period:?}");
         assert_eq!(period.receiver_steps, [8, 0], "32 pixels are 8 cells more");
