@@ -14,6 +14,12 @@ use crate::shader::module;
 
 pub const SHADER: &str = include_str!("../../shaders/gi/pyramid.wgsl");
 
+/// The levels each workgroup builds above its nodes in workgroup memory (`GROUP_LEVELS` in
+/// pyramid.wgsl): the first dispatch levels 0 to this, the second the rest from this one.
+pub(crate) const GROUP_LEVELS: u32 = 3;
+/// Each workgroup's side in nodes of the level it starts from.
+pub(crate) const GROUP_SIDE: u32 = 1 << GROUP_LEVELS;
+
 /// The node buffer of a pyramid over a flux G-buffer of `size` (of texel blocks: `blocks`).
 pub fn nodes_desc(size: (u32, u32), blocks: bool) -> BufferDesc {
     BufferDesc {
@@ -47,16 +53,30 @@ pub struct PyramidBindings<'a> {
     pub blocks: bool,
 }
 
-/// Where the base's flux comes from (GiParams.source). Each source, and each kind of base
-/// (single lamp-view texels or blocks of them), has its own pipeline, made with the shader's
-/// override constants, so it compiles only its own way (a CPU device runs both sides of a
-/// branch on a uniform value).
+/// Where the base's flux comes from (GiParams.source, as [`FluxSource::code`]). Each source,
+/// and each kind of base (single lamp-view texels or blocks of them), has its own pipeline,
+/// made with the shader's override constants, so it compiles only its own way (a CPU device
+/// runs both sides of a branch on a uniform value).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FluxSource {
     /// The headlamp's light on the lamp view (the first bounce).
     Lamp,
     /// The previous bounce's irradiance (bounces after the first).
     Bounce,
+}
+
+/// FluxSource's codes (`FROM_LAMP`, `FROM_BOUNCE` in gi_common.wgsl).
+pub(crate) const FROM_LAMP: u32 = 0;
+pub(crate) const FROM_BOUNCE: u32 = 1;
+
+impl FluxSource {
+    /// Its value of GiParams.source and of the shader's FLUX_SOURCE.
+    pub(crate) fn code(self) -> u32 {
+        match self {
+            FluxSource::Lamp => FROM_LAMP,
+            FluxSource::Bounce => FROM_BOUNCE,
+        }
+    }
 }
 
 pub struct PyramidPipelines {
@@ -85,11 +105,7 @@ impl PyramidPipelines {
         );
         let module = module(device, "gi pyramid", SHADER);
         let layouts = [Some(globals), Some(&layout)];
-        // (FROM_LAMP and FROM_BOUNCE in the shader.)
-        let from = match source {
-            FluxSource::Lamp => 0.0,
-            FluxSource::Bounce => 1.0,
-        };
+        let from = f64::from(source.code());
         Self {
             flux: [false, true].map(|blocks| {
                 let constants = [("FLUX_SOURCE", from), ("FLUX_BLOCKS", f64::from(u8::from(blocks)))];
@@ -131,11 +147,11 @@ impl PyramidPipelines {
         pass.set_bind_group(0, globals, &[]);
         pass.set_bind_group(1, &group, &[]);
         pass.set_pipeline(&self.flux[usize::from(b.blocks)]);
-        pass.dispatch_workgroups(size.0.div_ceil(8), size.1.div_ceil(8), 1);
-        // Each workgroup of the second dispatch reduces 8×8 nodes of level 3.
-        let (w3, h3) = Quadtree::new(size.0, size.1).size(3);
+        pass.dispatch_workgroups(size.0.div_ceil(GROUP_SIDE), size.1.div_ceil(GROUP_SIDE), 1);
+        // Each workgroup of the second dispatch reduces GROUP_SIDE² nodes of level GROUP_LEVELS.
+        let (w, h) = Quadtree::new(size.0, size.1).size(GROUP_LEVELS);
         pass.set_pipeline(&self.reduce);
-        pass.dispatch_workgroups(w3.div_ceil(8), h3.div_ceil(8), 1);
+        pass.dispatch_workgroups(w.div_ceil(GROUP_SIDE), h.div_ceil(GROUP_SIDE), 1);
         2
     }
 }

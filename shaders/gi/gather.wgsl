@@ -325,7 +325,7 @@ fn gather(r: u32, lanes: Lanes, group: vec2u) {
     }
     if in_view {
         var total = e;
-        if params.source == 1u {
+        if params.source == FROM_BOUNCE {
             textureStore(bounce_out, vec2i(q), vec4f(e, 1.0));
             total += textureLoad(accumulate, vec2i(q), 0).rgb;
         }

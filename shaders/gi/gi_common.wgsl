@@ -78,7 +78,8 @@ struct GiParams {
     split_ratio: f32,
     // Lights are never split below this pyramid level (a receiver's footprint).
     min_level: u32,
-    // 0: flux from the lamp, Φ = ρ·I·Ω; 1: flux from the previous bounce, Φ = ρ·E·A.
+    // FROM_LAMP: flux from the lamp, Φ = ρ·I·Ω; FROM_BOUNCE: flux from the previous bounce,
+    // Φ = ρ·E·A.
     source: u32,
     // 2: receivers evaluate the cut interleaved in a 2×2 pattern; 1: each evaluates all of it.
     interleave: u32,
@@ -94,13 +95,14 @@ struct GiParams {
     // its fine light volumes' radius in sizes of their coarse lights (light_stream.wgsl).
     article_interleave: u32,
     volume_reach: f32,
-    // The whole cells the receivers' grid has stepped back, mod 12 each way (x | y << 16:
-    // `receiver_steps`): the gather's 2×2 interleave pattern follows their parity
-    // (gather.wgsl's `light_class`), the article's sub-images them mod N
+    // The whole cells the receivers' grid has stepped back, mod RECEIVER_PERIOD each way
+    // (x | y << 16: `receiver_steps`): the gather's 2×2 interleave pattern follows their
+    // parity (gather.wgsl's `light_class`), the article's sub-images them mod N
     // (sub_image_layout.wgsl), so a world point keeps its class of lights.
     receiver_steps: u32,
-    // The periods (SENDER_PAD blocks) the senders' grid has stepped back, + 2048, each way
-    // (x | y << 16): the article's lights keep their subsets by them (light_stream.wgsl).
+    // The periods (SENDER_PAD blocks) the senders' grid has stepped back, plus
+    // SENDER_STEPS_OFFSET, each way (x | y << 16): the article's lights keep their subsets by
+    // them (light_stream.wgsl).
     sender_steps: u32,
     pad0: u32,
     pad1: u32,
@@ -111,6 +113,17 @@ struct GiParams {
     view_right: vec4f,
     view_up: vec4f,
 };
+
+// Where a flux texel's flux comes from (GiParams.source).
+const FROM_LAMP: u32 = 0u;
+const FROM_BOUNCE: u32 = 1u;
+
+// The grids' steps (plugin_gi/src/grids.rs): the receivers' are kept mod RECEIVER_PERIOD; the
+// senders' are whole periods of SENDER_PAD base blocks, stored plus SENDER_STEPS_OFFSET (both
+// signed, as the steps are once it is taken off).
+const RECEIVER_PERIOD: u32 = 12u;
+const SENDER_PAD: i32 = 8;
+const SENDER_STEPS_OFFSET: i32 = 2048;
 
 const PYRAMID_LEVELS: u32 = 7u;
 

@@ -46,6 +46,8 @@ const ENTRY_FINE: u32 = 1u;
 const VOLUME_VERTICES: u32 = 60u;
 const VOLUME_EVERYWHERE: f32 = -1.0;
 const GROUP: u32 = 64u;
+// The most lights a slot is drawn as (see is_drawn): one bit each of a u32 mask.
+const LIGHTS_PER_SLOT: u32 = 32u;
 
 var<workgroup> counts: array<u32, GROUP>;
 
@@ -187,7 +189,7 @@ fn is_fine(e: vec4u) -> bool {
 fn light_masks(e: vec4u) -> vec2u {
     let slot = unpack_place(e.x, e.y);
     var masks = vec2u(0u);
-    for (var j = 0u; j < 32u; j++) {
+    for (var j = 0u; j < LIGHTS_PER_SLOT; j++) {
         if is_drawn(slot, j) {
             masks.x |= 1u << j;
             let p = place_of(slot, j / 2u);
@@ -228,16 +230,17 @@ fn write_light(e: vec4u, j: u32, at: u32) {
 
 // The sub-image a light is drawn into, by its place in the world, so a light keeps its
 // subset as the view turns: the node's texel with the senders' grid's steps taken out (each
-// step moves the flux G-buffer's content SENDER_PAD = 8 base texels on, a whole number of
+// step moves the flux G-buffer's content SENDER_PAD (8) base texels on, a whole number of
 // nodes up to level 3, whose grouping the steps keep). Each N×N block of nodes of a level
 // holds every subset once (stratified: a subset's lights spread over the view), in an order
 // of its own (a hash of the block picks one of the affine orders a·i + b mod N², a prime to
 // 2 and 3), so no subset keeps to a lattice that the receivers' sub-images could match.
 // A block drawn as its halves gives its second side the subset half-way round.
 fn light_subset(p: Place, side: u32) -> u32 {
-    let steps = vec2i(i32(params.sender_steps & 0xffffu), i32(params.sender_steps >> 16u)) - 2048;
+    let steps =
+        vec2i(i32(params.sender_steps & 0xffffu), i32(params.sender_steps >> 16u)) - SENDER_STEPS_OFFSET;
     // (Made positive before the modulo.)
-    let world = bitcast<vec2u>(vec2i(p.t) - ((steps * 8) >> vec2u(p.level)) + vec2i(1 << 20u));
+    let world = bitcast<vec2u>(vec2i(p.t) - ((steps * SENDER_PAD) >> vec2u(p.level)) + vec2i(1 << 20u));
     let n = max(params.article_interleave, 1u);
     let block = world / n;
     var h = block.x * 0x9e3779b1u ^ (block.y + 0x7f4a7c15u) * 0x85ebca6bu ^ p.level * 0xc2b2ae35u;
@@ -271,7 +274,7 @@ fn main(@builtin(local_invocation_index) i: u32) {
         var at = placed + prefix.x;
         var shown_at = shown_count + shown_prefix.x;
         let slot = unpack_place(e.x, e.y);
-        for (var j = 0u; j < 32u; j++) {
+        for (var j = 0u; j < LIGHTS_PER_SLOT; j++) {
             if (masks.y & (1u << j)) != 0u {
                 write_light(e, j, at);
                 at++;

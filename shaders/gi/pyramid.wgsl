@@ -28,12 +28,14 @@
 // The previous bounce's irradiance (only read where FLUX_SOURCE is FROM_BOUNCE).
 @group(1) @binding(8) var previous_irradiance: texture_2d<f32>;
 
+// The levels each workgroup builds above its 8×8 nodes: `flux_levels` levels 0 to
+// GROUP_LEVELS, `reduce` the rest from level GROUP_LEVELS.
+const GROUP_LEVELS: u32 = 3u;
+
 var<workgroup> wide: array<Node, 64>;
 var<workgroup> narrow: array<Node, 16>;
 
 // Where a flux texel's flux comes from: FROM_LAMP or FROM_BOUNCE (as params.source says).
-const FROM_LAMP: u32 = 0u;
-const FROM_BOUNCE: u32 = 1u;
 override FLUX_SOURCE: u32 = FROM_LAMP;
 // Whether the base's texels are blocks of lamp-view texels (as params.flux_block > 1 says).
 override FLUX_BLOCKS: bool = false;
@@ -257,10 +259,10 @@ fn flux_levels(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocati
 fn reduce(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_id) local: vec3u,
     @builtin(workgroup_id) group: vec3u) {
     var node: Node;
-    let l = table.levels[3];
+    let l = table.levels[GROUP_LEVELS];
     if id.x < l.y && id.y < l.z {
         node = nodes[l.x + id.y * l.y + id.x];
     }
     wide[local.y * 8u + local.x] = node;
-    reduce_three_levels(local.xy, group.xy, 3u);
+    reduce_three_levels(local.xy, group.xy, GROUP_LEVELS);
 }

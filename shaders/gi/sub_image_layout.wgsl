@@ -11,9 +11,9 @@ fn sub_side() -> u32 {
 }
 
 // A step back of the grid moves a world point to the next receiver, q + 1: the shift is the
-// steps taken away (12 − steps, mod 12 as they are, then mod N).
+// steps taken away (RECEIVER_PERIOD − steps, mod the period as they are, then mod N).
 fn sub_shift() -> vec2u {
-    return (12u - receiver_steps(params)) % 12u % sub_side();
+    return (RECEIVER_PERIOD - receiver_steps(params)) % RECEIVER_PERIOD % sub_side();
 }
 
 // A sub-image's size in receivers.

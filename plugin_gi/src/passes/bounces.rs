@@ -99,7 +99,7 @@ impl RenderPass for BouncePass {
     fn run(&mut self, io: &Option<BounceIo>, ctx: &mut PassContext<'_>) {
         let Some(io) = io else { return };
         let settings = self.handle.settings();
-        let values = params(&settings, ctx, 1);
+        let values = params(&settings, ctx, FluxSource::Bounce);
         ctx.write_buffer(&io.params, 0, bytemuck::bytes_of(&values));
         let device = &ctx.gpu.device;
         let low = io.indirect_size;

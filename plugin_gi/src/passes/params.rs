@@ -9,6 +9,7 @@ use engine::wgpu;
 
 use crate::gpu_types::GiParams;
 use crate::grids::{Grids, SENDER_PAD};
+use crate::pyramid::FluxSource;
 use crate::settings::GiSettings;
 use crate::shared::GiHandle;
 
@@ -92,8 +93,8 @@ pub(crate) fn fixed((w, h): (u32, u32)) -> SizeRule {
     SizeRule::Fixed(w, h)
 }
 
-/// The frame's GI parameters; `source` 0 builds from the lamp, 1 from the previous bounce.
-pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: u32) -> GiParams {
+/// The frame's GI parameters, for a pyramid built from `source`.
+pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: FluxSource) -> GiParams {
     let (size, attached) = (ctx.frame.size, ctx.frame.view.headlamp.attached);
     let flux = flux_size(settings, size, attached);
     let indirect = indirect_size(settings, size);
@@ -110,7 +111,7 @@ pub(crate) fn params(settings: &GiSettings, ctx: &PassContext<'_>, source: u32) 
         merge_distance: settings.merge_distance,
         split_ratio: settings.split_ratio,
         min_level: finest_level(settings, size, attached),
-        source,
+        source: source.code(),
         interleave: settings.interleave,
         flux_block: block,
         receiver_offset: grids.receiver_offset,
@@ -153,7 +154,7 @@ impl RenderPass for GiParamsPass {
     }
 
     fn run(&mut self, params: &Write<Buffer>, ctx: &mut PassContext<'_>) {
-        let value = self::params(&self.handle.settings(), ctx, 0);
+        let value = self::params(&self.handle.settings(), ctx, FluxSource::Lamp);
         ctx.write_buffer(params, 0, bytemuck::bytes_of(&value));
     }
 }
