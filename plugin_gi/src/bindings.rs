@@ -3,6 +3,10 @@
 
 use engine::wgpu;
 
+/// The side of the square workgroups of the passes that take one texel an invocation (sight
+/// depth, temporal, the sub-images' split and join).
+pub const TEXEL_GROUP: u32 = 8;
+
 #[derive(Clone, Copy)]
 pub enum Slot {
     Uniform,

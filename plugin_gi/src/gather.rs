@@ -104,8 +104,8 @@ pub const TILE: u32 = 8;
 /// level has more: every one of those is in every cut.
 pub const CUT_MAX: u32 = 1536;
 
-/// Invocations (tiles) per workgroup of the cuts pass.
-const CUTS_GROUP: u32 = 8;
+/// Invocations (tiles) per workgroup of the cuts pass (`CUTS_GROUP` in cuts.wgsl).
+pub const CUTS_GROUP: u32 = 8;
 
 /// At most this much memory holds the cuts, so no setting can ask for an unbounded buffer: an
 /// indirect target with more tiles than fit is made smaller ([`fit_cuts_budget`]). Below the

@@ -198,6 +198,10 @@ pub const GPU_ONLY: &[(&str, &str)] = &[
     ("DotOut", "stage IO between vertex and fragment shaders"),
 ];
 
+/// Size in bytes of one light of the article's instance stream (`VolumeLight` in
+/// gi_common.wgsl).
+pub const VOLUME_LIGHT_SIZE: u64 = 80;
+
 /// Size in bytes of one pyramid node (`Node` in gi_common.wgsl).
 pub const NODE_SIZE: u64 = 48;
 /// The gather's counters (`Stats` in cuts.wgsl).

@@ -11,8 +11,9 @@ use engine::scene::IntensityDistribution;
 use engine::wgpu;
 use engine::wgpu::util::DeviceExt;
 
-use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
+use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S, TEXEL_GROUP};
 use crate::distribution_table::{lamp_importance, DistributionTable};
+use crate::gpu_types::VOLUME_LIGHT_SIZE;
 use crate::quadtree::Quadtree;
 use crate::shader::module;
 
@@ -24,10 +25,8 @@ pub const SUB_IMAGES_SHADER: &str = include_str!("../../shaders/gi/sub_images.wg
 /// sub-image, the fine ones only their volumes).
 const COARSE_SHARE: u32 = 4;
 /// A slot is drawn as at most this many lights (an incoherent one refined two levels, a block
-/// spanning a fold as its two sides).
-const LIGHTS_PER_SLOT: u64 = 32;
-/// Bytes of one `VolumeLight` (light_stream.wgsl).
-const VOLUME_LIGHT_SIZE: u64 = 80;
+/// spanning a fold as its two sides; `LIGHTS_PER_SLOT` in light_stream.wgsl).
+pub const LIGHTS_PER_SLOT: u32 = 32;
 /// The receivers' positions and normals in their sub-images (sub_images.wgsl).
 const RECEIVERS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
@@ -279,7 +278,7 @@ impl LightVolumes {
             let scratch = Scratch {
                 stream: device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("gi light stream"),
-                    size: entries * LIGHTS_PER_SLOT * VOLUME_LIGHT_SIZE,
+                    size: entries * u64::from(LIGHTS_PER_SLOT) * VOLUME_LIGHT_SIZE,
                     usage: wgpu::BufferUsages::STORAGE,
                     mapped_at_creation: false,
                 }),
@@ -324,7 +323,7 @@ impl LightVolumes {
         pass.set_pipeline(&self.split_pipeline);
         pass.set_bind_group(1, &common, &[]);
         pass.set_bind_group(2, &split, &[]);
-        pass.dispatch_workgroups(indirect.0.div_ceil(8), indirect.1.div_ceil(8), 1);
+        pass.dispatch_workgroups(indirect.0.div_ceil(TEXEL_GROUP), indirect.1.div_ceil(TEXEL_GROUP), 1);
         pass.set_pipeline(&self.stream_pipeline);
         pass.set_bind_group(1, &stream, &[]);
         pass.dispatch_workgroups(1, 1, 1);
@@ -352,7 +351,7 @@ impl LightVolumes {
         pass.set_pipeline(&self.join_pipeline);
         pass.set_bind_group(1, &common, &[]);
         pass.set_bind_group(3, &join, &[]);
-        pass.dispatch_workgroups(indirect.0.div_ceil(8), indirect.1.div_ceil(8), 1);
+        pass.dispatch_workgroups(indirect.0.div_ceil(TEXEL_GROUP), indirect.1.div_ceil(TEXEL_GROUP), 1);
         (3, 1)
     }
 }

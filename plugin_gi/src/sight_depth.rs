@@ -6,7 +6,7 @@
 use engine::graph::{Handle, Image, PassContext, PassDecl, Read, TextureDesc, Write};
 use engine::wgpu;
 
-use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S};
+use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S, TEXEL_GROUP};
 use crate::shader::module;
 
 pub const SHADER: &str = include_str!("../../shaders/gi/sight_depth.wgsl");
@@ -47,7 +47,7 @@ impl SightDepth {
         pass.set_bind_group(0, ctx.frame.globals, &[]);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(1, &group, &[]);
-        pass.dispatch_workgroups(size.width.div_ceil(8), size.height.div_ceil(8), 1);
+        pass.dispatch_workgroups(size.width.div_ceil(TEXEL_GROUP), size.height.div_ceil(TEXEL_GROUP), 1);
         1
     }
 }

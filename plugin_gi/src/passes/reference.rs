@@ -17,6 +17,9 @@ pub const SHADER: &str = include_str!("../../../shaders/gi/reference.wgsl");
 /// 65,535 that llvmpipe allows a loop nest.
 const SENDERS_PER_DISPATCH: u32 = 16384;
 
+/// Receivers per workgroup (reference.wgsl's workgroup size, one receiver an invocation).
+pub(crate) const GROUP: u32 = 64;
+
 pub struct ReferencePass {
     handle: GiHandle,
     core: CoreResources,
@@ -137,7 +140,7 @@ impl RenderPass for ReferencePass {
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, ctx.frame.globals, &[]);
             pass.set_bind_group(1, &group, &[]);
-            pass.dispatch_workgroups(receivers.div_ceil(64), 1, 1);
+            pass.dispatch_workgroups(receivers.div_ceil(GROUP), 1, 1);
         }
     }
 }

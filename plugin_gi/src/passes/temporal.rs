@@ -14,7 +14,7 @@ use engine::wgpu;
 
 use super::gather::{irradiance_texture, IRRADIANCE_FORMAT};
 use super::params::indirect_size;
-use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
+use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S, TEXEL_GROUP};
 use crate::gpu_types::TemporalParams;
 use crate::grids::Grids;
 use crate::resources::GiResources;
@@ -185,7 +185,7 @@ impl RenderPass for TemporalPass {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, ctx.frame.globals, &[]);
         pass.set_bind_group(1, &group, &[]);
-        pass.dispatch_workgroups(io.size.0.div_ceil(8), io.size.1.div_ceil(8), 1);
+        pass.dispatch_workgroups(io.size.0.div_ceil(TEXEL_GROUP), io.size.1.div_ceil(TEXEL_GROUP), 1);
         drop(pass);
         ctx.count_dispatches(1);
     }
