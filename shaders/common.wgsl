@@ -25,7 +25,7 @@ struct Globals {
     camera_flash: vec4f,
 };
 
-// A punctual light. kind: 0 point, 1 spot, 2 directional.
+// A punctual light. kind: LIGHT_POINT, LIGHT_SPOT or LIGHT_DIRECTIONAL.
 struct Light {
     // xyz position; w range (0 = infinite).
     position_range: vec4f,
@@ -36,6 +36,10 @@ struct Light {
     // x cos(inner cone), y cos(outer cone).
     cone: vec4f,
 };
+
+const LIGHT_POINT: u32 = 0u;
+const LIGHT_SPOT: u32 = 1u;
+const LIGHT_DIRECTIONAL: u32 = 2u;
 
 @group(0) @binding(0) var<uniform> globals: Globals;
 @group(0) @binding(1) var<storage, read> lights: array<Light>;

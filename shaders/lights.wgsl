@@ -24,7 +24,7 @@ const SHADOW_MAX_SLOPE: f32 = 10.0;
 
 fn punctual(light: Light, x: vec3f, n: vec3f) -> Incident {
     let kind = u32(light.direction_kind.w);
-    if kind == 2u {
+    if kind == LIGHT_DIRECTIONAL {
         // Directional: irradiance E = intensity · cos.
         let l = -light.direction_kind.xyz;
         return Incident(l, light.color.rgb * max(0.0, dot(n, l)));
@@ -40,7 +40,7 @@ fn punctual(light: Light, x: vec3f, n: vec3f) -> Incident {
         let window = clamp(1.0 - r * r * r * r, 0.0, 1.0);
         intensity *= window * window;
     }
-    if kind == 1u {
+    if kind == LIGHT_SPOT {
         let cos_angle = dot(-l, light.direction_kind.xyz);
         intensity *= smoothstep(light.cone.y, light.cone.x, cos_angle);
     }

@@ -3,13 +3,19 @@
 #include "common.wgsl"
 
 struct PresentParams {
-    // x: view (0 radiance, 1 albedo, 2 normal, 3 depth); y: 1 = write linear values;
-    // z: 1 = encode sRGB in the shader (output format is not an sRGB format); w: 1 = upsample
+    // x: view (VIEW_*: radiance, albedo, normal, depth); y: 1 = write linear values; z: 1 =
+    // encode sRGB in the shader (output format is not an sRGB format); w: 1 = upsample
     // bilinearly (a view rendered at a reduced render scale).
     mode: vec4u,
     // Output width, height, 1/width, 1/height.
     output: vec4f,
 };
+
+// PresentParams.mode.x: the view shown.
+const VIEW_RADIANCE: u32 = 0u;
+const VIEW_COLOR: u32 = 1u;
+const VIEW_NORMAL: u32 = 2u;
+const VIEW_DEPTH: u32 = 3u;
 
 @group(1) @binding(0) var source: texture_2d<f32>;
 @group(1) @binding(1) var<uniform> params: PresentParams;
@@ -66,16 +72,16 @@ fn shown(value: vec4f) -> vec4f {
     let view = params.mode.x;
     if params.mode.y == 1u {
         // Linear: radiance, albedo, the unit normal, or depth in metres as stored.
-        if view == 3u {
+        if view == VIEW_DEPTH {
             return vec4f(vec3f(value.w), 1.0);
         }
         return vec4f(value.rgb, 1.0);
     }
     var c: vec3f;
     switch view {
-        case 0u: { c = aces(value.rgb * globals.params.x); }
-        case 1u: { c = value.rgb; }
-        case 2u: { c = select(vec3f(0.0), value.xyz * 0.5 + 0.5, value.w > 0.0); }
+        case VIEW_RADIANCE: { c = aces(value.rgb * globals.params.x); }
+        case VIEW_COLOR: { c = value.rgb; }
+        case VIEW_NORMAL: { c = select(vec3f(0.0), value.xyz * 0.5 + 0.5, value.w > 0.0); }
         default: {
             // Depth: near is white, fading with distance (1 at 0 m, 0.5 at 5 m); sky black.
             c = select(vec3f(0.0), vec3f(1.0 / (1.0 + value.w / 5.0)), value.w > 0.0);

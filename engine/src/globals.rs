@@ -107,6 +107,11 @@ crate::gpu_struct! {
     }
 }
 
+/// What a light is, in `Light.direction_kind.w` (`LIGHT_*` in shaders/common.wgsl).
+pub const LIGHT_POINT: u32 = 0;
+pub const LIGHT_SPOT: u32 = 1;
+pub const LIGHT_DIRECTIONAL: u32 = 2;
+
 crate::gpu_struct! {
     /// `Light` in shaders/common.wgsl.
     #[repr(C)]
@@ -122,9 +127,9 @@ crate::gpu_struct! {
 impl GpuLight {
     fn new(l: &PunctualLight) -> Self {
         let (kind, cone) = match l.kind {
-            LightKind::Point => (0.0, [-2.0, -1.0]),
-            LightKind::Spot { inner_cone, outer_cone } => (1.0, [inner_cone.cos(), outer_cone.cos()]),
-            LightKind::Directional => (2.0, [-2.0, -1.0]),
+            LightKind::Point => (LIGHT_POINT as f32, [-2.0, -1.0]),
+            LightKind::Spot { inner_cone, outer_cone } => (LIGHT_SPOT as f32, [inner_cone.cos(), outer_cone.cos()]),
+            LightKind::Directional => (LIGHT_DIRECTIONAL as f32, [-2.0, -1.0]),
         };
         let c = l.color;
         Self {

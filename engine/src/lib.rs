@@ -25,6 +25,7 @@ pub mod primitives;
 pub mod renderer;
 pub mod replay;
 pub mod shader;
+pub mod shared_constants;
 pub mod start_view;
 pub mod ui;
 pub mod view_state;

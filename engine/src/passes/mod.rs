@@ -17,7 +17,7 @@ pub use fullscreen::{bind_textures, color_pass, fullscreen_pipeline, procedural_
 pub use gbuffer::GBufferPass;
 pub use lamp_view::LampViewPass;
 pub(crate) use present::PresentUniform;
-pub use present::{OutputView, PresentPass, PresentSettings};
+pub use present::{OutputView, PresentPass, PresentSettings, VIEW_COLOR, VIEW_DEPTH, VIEW_NORMAL, VIEW_RADIANCE};
 
 pub use core_resources::{CoreResources, GBuffer, HDR_FORMAT};
 pub use view_model::{ViewModelIrradianceClearPass, ViewModelPass, VIEW_MODEL_IRRADIANCE_SIZE};

@@ -24,13 +24,19 @@ pub enum OutputView {
     Depth,
 }
 
+/// OutputView's codes in PresentParams.mode.x (`VIEW_*` in present.wgsl).
+pub const VIEW_RADIANCE: u32 = 0;
+pub const VIEW_COLOR: u32 = 1;
+pub const VIEW_NORMAL: u32 = 2;
+pub const VIEW_DEPTH: u32 = 3;
+
 impl OutputView {
     fn code(self) -> u32 {
         match self {
-            OutputView::Radiance => 0,
-            OutputView::Color => 1,
-            OutputView::Normal => 2,
-            OutputView::Depth => 3,
+            OutputView::Radiance => VIEW_RADIANCE,
+            OutputView::Color => VIEW_COLOR,
+            OutputView::Normal => VIEW_NORMAL,
+            OutputView::Depth => VIEW_DEPTH,
         }
     }
 }
