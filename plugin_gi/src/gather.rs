@@ -372,13 +372,6 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_shaders_share_the_cut_layout() {
-        let common = crate::shader::INCLUDES[0].1;
-        assert!(common.contains(&format!("const CUT_TILE: u32 = {TILE}u;")), "gi_common.wgsl's CUT_TILE is {TILE}");
-        assert!(common.contains(&format!("const CUT_MAX: u32 = {CUT_MAX}u;")), "gi_common.wgsl's CUT_MAX is {CUT_MAX}");
-    }
-
-    #[test]
     fn every_tile_has_room_for_its_cut_and_the_whole_top_level() {
         let small = Quadtree::new(160, 90);
         let one = CutsLayout::new((160, 90), &small);

@@ -24,6 +24,7 @@ mod resources;
 mod settings;
 mod shader;
 mod shared;
+pub mod shared_constants;
 mod sight_depth;
 
 use engine::graph::Stage;
