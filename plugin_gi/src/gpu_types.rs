@@ -175,7 +175,7 @@ pub fn twins() -> Vec<Layout> {
 /// The structs in the GI's shaders that have no Rust twin, and why. The sizes the CPU needs of
 /// some of them are constants below, which the layout test checks.
 pub const GPU_ONLY: &[(&str, &str)] = &[
-    ("VolumeLight", "the article's instance stream, written and read by the GPU only"),
+    ("VolumeLight", "the article's instance stream, written and read by the GPU only (VOLUME_LIGHT_SIZE sizes it)"),
     ("DrawArgs", "written by the GPU, read as wgpu's DrawIndirectArgs"),
     ("Place", "a function's value, never in a buffer"),
     ("Receiver", "a function's value, never in a buffer"),

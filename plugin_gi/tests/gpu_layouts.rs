@@ -10,7 +10,7 @@ mod layout_check;
 use engine::gpu_layout::GpuLayout;
 use engine::wgpu;
 use layout_check::{check, compare, Checked};
-use plugin_gi::gpu_types::{self, GiParams, GATHER_STATS_SIZE, NODE_SIZE, RETRY_HEADER};
+use plugin_gi::gpu_types::{self, GiParams, GATHER_STATS_SIZE, NODE_SIZE, RETRY_HEADER, VOLUME_LIGHT_SIZE};
 
 fn compose(files: &[(&'static str, &str)], includes: &[(&str, &str)]) -> Vec<(&'static str, String)> {
     files.iter().map(|(name, source)| (*name, engine::shader::compose(source, includes))).collect()
@@ -47,6 +47,7 @@ fn sizes_of_gpu_only_structs_match_wgsl() {
     assert_eq!(NODE_SIZE as usize, s["Node"].size, "NODE_SIZE against Node");
     assert_eq!(RETRY_HEADER as usize, s["RetryList"].member("tiles").offset, "RETRY_HEADER against RetryList.tiles");
     assert_eq!(GATHER_STATS_SIZE as usize, s["Stats"].size, "GATHER_STATS_SIZE against Stats");
+    assert_eq!(VOLUME_LIGHT_SIZE as usize, s["VolumeLight"].size, "VOLUME_LIGHT_SIZE against VolumeLight");
     // What the GPU writes for wgpu to read as indirect arguments.
     assert_eq!(std::mem::size_of::<wgpu::util::DispatchIndirectArgs>(), s["DispatchArgs"].size);
     assert_eq!(std::mem::size_of::<wgpu::util::DrawIndirectArgs>(), s["Stats"].member("lights").offset);
