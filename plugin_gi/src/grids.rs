@@ -121,6 +121,24 @@ mod tests {
         assert_eq!(period.receiver_steps, [8, 0], "32 pixels are 8 cells more");
     }
 
+    /// Each receiver keeps its class only where the period is a whole number of patterns.
+    #[test]
+    fn every_interleave_side_the_settings_allow_divides_the_receivers_period() {
+        for name in ["interleave", "article_interleave"] {
+            let info = crate::GiSettings::FIELDS.iter().find(|f| f.name == name).expect("a setting");
+            for side in info.min as u32..=info.max as u32 {
+                assert_eq!(RECEIVER_PERIOD % side, 0, "gi.{name} = {side}");
+            }
+        }
+    }
+
+    /// The senders' grid steps whole nodes of pyramid level GROUP_LEVELS, so its four finest
+    /// levels (to GROUP_LEVELS) keep their grouping.
+    #[test]
+    fn the_senders_pad_is_whole_pyramid_workgroups() {
+        assert_eq!(SENDER_PAD % crate::pyramid::GROUP_SIDE, 0);
+    }
+
     #[test]
     fn single_texel_senders_and_orthographic_views_stay_put() {
         assert_eq!(Grids::of(&turned(5.0, 7.0), SIZE, LOW, 1).sender_offset, [0.0, 0.0]);
