@@ -14,7 +14,8 @@ fn engine_files() -> Vec<(&'static str, String)> {
 
 #[test]
 fn every_shared_constant_has_its_rust_value_in_wgsl() {
-    let raw: Vec<(&str, &str)> = engine::passes::SHADERS.iter().chain(engine::shader::ENGINE_INCLUDES).copied().collect();
+    let raw: Vec<(&str, &str)> =
+        engine::passes::SHADERS.iter().chain(engine::shader::ENGINE_INCLUDES).copied().collect();
     let compared = check_constants(&engine_files(), &raw, CONSTANTS)
         .unwrap_or_else(|e| panic!("WGSL constants drifted from Rust:\n{e}"));
     assert!(compared >= CONSTANTS.len(), "compared {compared} of {} constants", CONSTANTS.len());

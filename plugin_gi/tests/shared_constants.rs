@@ -61,7 +61,8 @@ fn every_dispatched_workgroup_size_is_its_entry_points() {
 
 #[test]
 fn no_wgsl_writes_a_shared_value_as_a_literal_where_its_constant_is_meant() {
-    check_literals(&raw_files(), &guarded_values(), GUARDS).unwrap_or_else(|e| panic!("literals repeat constants:\n{e}"));
+    check_literals(&raw_files(), &guarded_values(), GUARDS)
+        .unwrap_or_else(|e| panic!("literals repeat constants:\n{e}"));
 }
 
 /// The ambient cube the GI adds to is the engine's buffer, of the size the engine makes it.
@@ -95,7 +96,9 @@ fn a_drifted_sample_fails() {
     let square = [Workgroup { file: "sample.wgsl", entry: "main", size: [8, 8, 1], rust: "[GROUP, GROUP, 1]" }];
     let error = check_workgroups(&files, &square).expect_err("8×4 is not 8×8");
     assert!(
-        error.contains("sample.wgsl main: WGSL workgroup size [8, 4, 1], Rust dispatches count with [GROUP, GROUP, 1] = [8, 8, 1]"),
+        error.contains(
+            "sample.wgsl main: WGSL workgroup size [8, 4, 1], Rust dispatches count with [GROUP, GROUP, 1] = [8, 8, 1]"
+        ),
         "{error}"
     );
 

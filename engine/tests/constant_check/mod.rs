@@ -169,8 +169,8 @@ pub fn check_literals(raw: &[(&str, &str)], values: &BTreeMap<String, Value>, gu
         };
         for (file, source) in raw {
             let code = without_comments(source);
-            let ranges = match g.within {
-                Within::Everywhere => vec![0..code.len()],
+            let ranges: Vec<std::ops::Range<usize>> = match g.within {
+                Within::Everywhere => std::iter::once(0..code.len()).collect(),
                 Within::FunctionsNaming(word) => {
                     function_bodies(&code).into_iter().filter(|r| has_word(&code[r.clone()], word)).collect()
                 }
@@ -181,12 +181,19 @@ pub fn check_literals(raw: &[(&str, &str)], values: &BTreeMap<String, Value>, gu
                     let line = &code[code[..at].rfind('\n').map_or(0, |i| i + 1)..];
                     let line = &line[..line.find('\n').unwrap_or(line.len())];
                     let declaration = line.trim_start().starts_with(&format!("const {}", g.constant));
-                    if literal.value == value.value && (literal.suffix.is_none() || literal.suffix == value.suffix)
+                    if literal.value == value.value
+                        && (literal.suffix.is_none() || literal.suffix == value.suffix)
                         && !declaration
                     {
                         let number = code[..at].matches('\n').count() + 1;
-                        writeln!(errors, "{file}:{number}: {} where {} is meant: `{}`", literal.text, g.constant, line.trim())
-                            .unwrap();
+                        writeln!(
+                            errors,
+                            "{file}:{number}: {} where {} is meant: `{}`",
+                            literal.text,
+                            g.constant,
+                            line.trim()
+                        )
+                        .unwrap();
                     }
                 }
             }
@@ -288,13 +295,11 @@ pub fn int_literals(code: &str) -> Vec<(usize, Literal)> {
         while i < bytes.len() {
             let d = bytes[i] as char;
             let exponent = if hex { "pP" } else { "eE" };
-            if is_word_char(d) || d == '.' {
-                i += 1;
-            } else if (d == '+' || d == '-') && exponent.contains(bytes[i - 1] as char) {
-                i += 1;
-            } else {
+            let sign = (d == '+' || d == '-') && exponent.contains(bytes[i - 1] as char);
+            if !(is_word_char(d) || d == '.' || sign) {
                 break;
             }
+            i += 1;
         }
         let text = &code[start..i];
         let (digits, suffix) = match text.chars().last() {

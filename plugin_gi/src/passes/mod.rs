@@ -19,8 +19,8 @@ pub use gather::GatherPass;
 pub use indirect::{IndirectCompositePass, IndirectViewPass};
 pub use lights_view::LightsViewPass;
 pub use params::GiParamsPass;
-pub(crate) use reference::GROUP as REFERENCE_GROUP;
 pub use reference::ReferencePass;
+pub(crate) use reference::GROUP as REFERENCE_GROUP;
 pub use temporal::TemporalPass;
 pub use view_model_irradiance::ViewModelIrradiancePass;
 
