@@ -36,9 +36,8 @@ pub(crate) struct Grids {
     /// sub-images them, so a world point keeps its class.
     pub receiver_steps: [u32; 2],
     /// The whole periods (SENDER_PAD blocks) the senders' grid has stepped back, plus
-    /// SENDER_STEPS_OFFSET, across and down: each
-    /// moves the content of the flux G-buffer SENDER_PAD blocks on, and the article's lights
-    /// keep their subsets by it.
+    /// SENDER_STEPS_OFFSET, across and down: each moves the content of the flux G-buffer
+    /// SENDER_PAD blocks on, and the article's lights keep their subsets by it.
     pub sender_steps: [u32; 2],
 }
 

@@ -14,10 +14,11 @@ use crate::shader::module;
 
 pub const SHADER: &str = include_str!("../../shaders/gi/pyramid.wgsl");
 
-/// The levels each workgroup builds above its nodes in workgroup memory (`GROUP_LEVELS` in
-/// pyramid.wgsl): the first dispatch levels 0 to this, the second the rest from this one.
+/// The levels a workgroup merges above its GROUP_SIDE × GROUP_SIDE nodes, in workgroup memory
+/// (`GROUP_LEVELS` in pyramid.wgsl): the first dispatch builds levels 0 to GROUP_LEVELS, the
+/// second the rest from level GROUP_LEVELS.
 pub(crate) const GROUP_LEVELS: u32 = 3;
-/// Each workgroup's side in nodes of the level it starts from.
+/// A workgroup's side in nodes of the level it starts from.
 pub(crate) const GROUP_SIDE: u32 = 1 << GROUP_LEVELS;
 
 /// The node buffer of a pyramid over a flux G-buffer of `size` (of texel blocks: `blocks`).
