@@ -5,6 +5,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec4};
 use scene::{LightKind, PunctualLight};
 
+use crate::bindings::{Binding, Group};
 use crate::gpu::Gpu;
 use crate::headlamp::{distribution_texels, LampFrustum};
 use crate::view_state::ViewState;
@@ -15,77 +16,35 @@ pub struct CoreLayouts {
     pub material: wgpu::BindGroupLayout,
 }
 
+/// Group 0 of every shader that includes common.wgsl.
+pub const GLOBALS: Group = Group::new(
+    "globals",
+    &[
+        Binding::uniform("globals"),
+        Binding::storage("lights"),
+        Binding::filtered_texture("lamp_distribution"),
+        Binding::sampler("linear_clamp"),
+    ],
+);
+
+/// Group 1 of the scene's surfaces (scene_surface.wgsl): the material's factors, and each
+/// texture with its sampler.
+pub const MATERIAL: Group = Group::new(
+    "material",
+    &[
+        Binding::uniform("material"),
+        Binding::filtered_texture("base_color_texture"),
+        Binding::sampler("base_color_sampler"),
+        Binding::filtered_texture("emissive_texture"),
+        Binding::sampler("emissive_sampler"),
+        Binding::filtered_texture("metallic_roughness_texture"),
+        Binding::sampler("metallic_roughness_sampler"),
+    ],
+);
+
 impl CoreLayouts {
     pub fn new(device: &wgpu::Device) -> Self {
-        use wgpu::ShaderStages as S;
-        let globals = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("globals"),
-            entries: &[
-                uniform_entry(0, S::VERTEX_FRAGMENT | S::COMPUTE),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: S::VERTEX_FRAGMENT | S::COMPUTE,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                texture_entry(2, S::VERTEX_FRAGMENT | S::COMPUTE, true),
-                sampler_entry(3, S::VERTEX_FRAGMENT | S::COMPUTE),
-            ],
-        });
-        let material = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("material"),
-            entries: &[
-                uniform_entry(0, S::FRAGMENT),
-                // Base colour texture and its sampler, emissive texture and its sampler,
-                // metallic-roughness texture and its sampler.
-                texture_entry(1, S::FRAGMENT, true),
-                sampler_entry(2, S::FRAGMENT),
-                texture_entry(3, S::FRAGMENT, true),
-                sampler_entry(4, S::FRAGMENT),
-                texture_entry(5, S::FRAGMENT, true),
-                sampler_entry(6, S::FRAGMENT),
-            ],
-        });
-        Self { globals, material }
-    }
-}
-
-pub fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-pub fn texture_entry(binding: u32, visibility: wgpu::ShaderStages, filterable: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }
-}
-
-pub fn sampler_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-        count: None,
+        Self { globals: GLOBALS.layout(device), material: MATERIAL.layout(device) }
     }
 }
 
@@ -281,14 +240,14 @@ fn bind(
     sampler: &wgpu::Sampler,
 ) -> wgpu::BindGroup {
     let view = distribution.create_view(&wgpu::TextureViewDescriptor::default());
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("globals"),
-        layout: &layouts.globals,
-        entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 1, resource: lights.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&view) },
-            wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(sampler) },
+    GLOBALS.bind(
+        device,
+        &layouts.globals,
+        &[
+            ("globals", uniform.into()),
+            ("lights", lights.into()),
+            ("lamp_distribution", (&view).into()),
+            ("linear_clamp", sampler.into()),
         ],
-    })
+    )
 }

@@ -221,25 +221,19 @@ impl GpuScene {
                     contents: bytemuck::bytes_of(&uniform),
                     usage: wgpu::BufferUsages::UNIFORM,
                 });
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some(&m.name),
-                    layout: &layouts.material,
-                    entries: &[
-                        wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&base_view) },
-                        wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&base_sampler) },
-                        wgpu::BindGroupEntry {
-                            binding: 3,
-                            resource: wgpu::BindingResource::TextureView(&emissive_view),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 4,
-                            resource: wgpu::BindingResource::Sampler(&emissive_sampler),
-                        },
-                        wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&mr_view) },
-                        wgpu::BindGroupEntry { binding: 6, resource: wgpu::BindingResource::Sampler(&mr_sampler) },
+                crate::globals::MATERIAL.bind(
+                    device,
+                    &layouts.material,
+                    &[
+                        ("material", (&buffer).into()),
+                        ("base_color_texture", (&base_view).into()),
+                        ("base_color_sampler", (&base_sampler).into()),
+                        ("emissive_texture", (&emissive_view).into()),
+                        ("emissive_sampler", (&emissive_sampler).into()),
+                        ("metallic_roughness_texture", (&mr_view).into()),
+                        ("metallic_roughness_sampler", (&mr_sampler).into()),
                     ],
-                })
+                )
             })
             .collect();
         Self { vertices, indices, draws, materials }

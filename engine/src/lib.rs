@@ -3,6 +3,7 @@
 //! container.
 //! It knows nothing of any game.
 
+pub mod bindings;
 pub mod camera;
 pub mod clock;
 pub mod dynamic_resolution;

@@ -1,12 +1,17 @@
 //! Starts the frame's HDR radiance as direct + emissive; plugins then add into it.
 
 use super::core_resources::{CoreResources, HDR_FORMAT};
-use super::fullscreen::{bind_textures, color_pass, fullscreen_pipeline, textures_layout};
+use super::fullscreen::{color_pass, fullscreen_pipeline};
+use crate::bindings::{Binding, Group};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::graph::{Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
 
 pub const SHADER: &str = include_str!("../../../shaders/composite.wgsl");
+
+/// The direct light and the emission it adds to (group 1).
+pub const INPUTS: Group =
+    Group::new("composite inputs", &[Binding::texture("direct_radiance"), Binding::texture("gbuffer_emissive")]);
 
 pub struct CompositePass {
     pipeline: wgpu::RenderPipeline,
@@ -24,7 +29,7 @@ impl CompositePass {
     pub fn new(gpu: &Gpu, layouts: &CoreLayouts, core: &CoreResources) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "composite", SHADER, &[]);
-        let inputs = textures_layout(device, "composite inputs", 2, false);
+        let inputs = INPUTS.layout(device);
         let pipeline = fullscreen_pipeline(
             device,
             "composite",
@@ -53,8 +58,11 @@ impl RenderPass for CompositePass {
     }
 
     fn run(&mut self, io: &CompositeIo, ctx: &mut PassContext<'_>) {
-        let views = [ctx.view(&io.direct), ctx.view(&io.emissive)];
-        let inputs = bind_textures(&ctx.gpu.device, &self.inputs, &views, None);
+        let inputs = INPUTS.bind(
+            &ctx.gpu.device,
+            &self.inputs,
+            &[("direct_radiance", ctx.view(&io.direct).into()), ("gbuffer_emissive", ctx.view(&io.emissive).into())],
+        );
         let target = ctx.view(&io.hdr);
         let mut pass = color_pass(ctx.encoder, "composite", target, false);
         pass.set_pipeline(&self.pipeline);

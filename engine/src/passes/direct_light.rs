@@ -4,11 +4,25 @@
 
 use super::core_resources::{CoreResources, HDR_FORMAT};
 use super::fullscreen::{color_pass, fullscreen_pipeline};
-use crate::globals::{texture_entry, CoreLayouts};
+use crate::bindings::{Binding, Group};
+use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::graph::{Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
 
 pub const SHADER: &str = include_str!("../../../shaders/direct_light.wgsl");
+
+/// The G-buffer and the detached lamp's shadow map (group 1).
+pub const INPUTS: Group = Group::new(
+    "direct light inputs",
+    &[
+        Binding::texture("gbuffer_albedo"),
+        Binding::texture("gbuffer_normal"),
+        Binding::texture("gbuffer_position"),
+        Binding::depth_texture("lamp_depth"),
+        Binding::comparison_sampler("lamp_shadow"),
+        Binding::texture("gbuffer_specular"),
+    ],
+);
 
 pub struct DirectLightPass {
     pipeline: wgpu::RenderPipeline,
@@ -19,7 +33,7 @@ pub struct DirectLightPass {
 }
 
 pub struct DirectLightIo {
-    /// Albedo, normal, position, the lamp's depth, specular: bindings 0–3 and 5.
+    /// Albedo, normal, position, the lamp's depth, specular.
     inputs: [Read<Image>; 5],
     direct: Write<Image>,
 }
@@ -28,19 +42,7 @@ impl DirectLightPass {
     pub fn new(gpu: &Gpu, layouts: &CoreLayouts, core: &CoreResources) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "direct light", SHADER, &[]);
-        let fragment = wgpu::ShaderStages::FRAGMENT;
-        let [shadow_map, shadow_compare] = super::lamp_view::lamp_shadow_entries(3, fragment);
-        let inputs = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("direct light inputs"),
-            entries: &[
-                texture_entry(0, fragment, false),
-                texture_entry(1, fragment, false),
-                texture_entry(2, fragment, false),
-                shadow_map,
-                shadow_compare,
-                texture_entry(5, fragment, false),
-            ],
-        });
+        let inputs = INPUTS.layout(device);
         let pipeline = fullscreen_pipeline(
             device,
             "direct light",
@@ -73,22 +75,18 @@ impl RenderPass for DirectLightPass {
 
     fn run(&mut self, io: &DirectLightIo, ctx: &mut PassContext<'_>) {
         let [albedo, normal, position, lamp_depth, specular] = &io.inputs;
-        let texture = |binding: u32, input: &Read<Image>| wgpu::BindGroupEntry {
-            binding,
-            resource: wgpu::BindingResource::TextureView(ctx.view(input)),
-        };
-        let inputs = ctx.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("direct light inputs"),
-            layout: &self.inputs,
-            entries: &[
-                texture(0, albedo),
-                texture(1, normal),
-                texture(2, position),
-                texture(3, lamp_depth),
-                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::Sampler(&self.shadow_sampler) },
-                texture(5, specular),
+        let inputs = INPUTS.bind(
+            &ctx.gpu.device,
+            &self.inputs,
+            &[
+                ("gbuffer_albedo", ctx.view(albedo).into()),
+                ("gbuffer_normal", ctx.view(normal).into()),
+                ("gbuffer_position", ctx.view(position).into()),
+                ("lamp_depth", ctx.view(lamp_depth).into()),
+                ("lamp_shadow", (&self.shadow_sampler).into()),
+                ("gbuffer_specular", ctx.view(specular).into()),
             ],
-        });
+        );
         let target = ctx.view(&io.direct);
         let mut pass = color_pass(ctx.encoder, "direct light", target, false);
         pass.set_pipeline(&self.pipeline);

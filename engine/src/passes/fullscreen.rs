@@ -1,37 +1,4 @@
-//! Shared plumbing of full-screen passes: a pipeline drawing one triangle, and bind groups of
-//! textures read with `textureLoad`.
-
-/// A bind group layout of `count` 2D float textures at bindings 0..count (unfilterable, so
-/// Rgba32Float works), optionally followed by a uniform buffer at binding `count`.
-pub fn textures_layout(device: &wgpu::Device, label: &str, count: u32, with_uniform: bool) -> wgpu::BindGroupLayout {
-    let mut entries: Vec<wgpu::BindGroupLayoutEntry> = (0..count)
-        .map(|binding| {
-            crate::globals::texture_entry(binding, wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE, false)
-        })
-        .collect();
-    if with_uniform {
-        entries.push(crate::globals::uniform_entry(count, wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE));
-    }
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries })
-}
-
-/// Binds `views` at 0..n and, if given, `uniform` at n, matching [`textures_layout`].
-pub fn bind_textures(
-    device: &wgpu::Device,
-    layout: &wgpu::BindGroupLayout,
-    views: &[&wgpu::TextureView],
-    uniform: Option<&wgpu::Buffer>,
-) -> wgpu::BindGroup {
-    let mut entries: Vec<wgpu::BindGroupEntry> = views
-        .iter()
-        .enumerate()
-        .map(|(i, v)| wgpu::BindGroupEntry { binding: i as u32, resource: wgpu::BindingResource::TextureView(v) })
-        .collect();
-    if let Some(u) = uniform {
-        entries.push(wgpu::BindGroupEntry { binding: views.len() as u32, resource: u.as_entire_binding() });
-    }
-    device.create_bind_group(&wgpu::BindGroupDescriptor { label: None, layout, entries: &entries })
-}
+//! Shared plumbing of full-screen passes: a pipeline drawing one triangle.
 
 /// A pipeline that draws a full-screen triangle (`vs_main`/`fs_main` of `module`) into one target.
 pub fn fullscreen_pipeline(

@@ -30,21 +30,6 @@ pub const LAMP_DEPTH_FORMAT: wgpu::TextureFormat = super::gbuffer::DEPTH_FORMAT;
 
 /// The descriptor of a `lamp.*` texture: fixed size, sampled by later passes, and copyable so
 /// tools and tests can read it back.
-/// The layout entries of a pass reading `lamp.depth` as the detached headlamp's shadow map: the
-/// depth texture at `binding` and its comparison sampler ([`lamp_shadow_sampler`]) after it.
-pub(super) fn lamp_shadow_entries(binding: u32, visibility: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 2] {
-    let depth = wgpu::BindingType::Texture {
-        sample_type: wgpu::TextureSampleType::Depth,
-        view_dimension: wgpu::TextureViewDimension::D2,
-        multisampled: false,
-    };
-    let compare = wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison);
-    [
-        wgpu::BindGroupLayoutEntry { binding, visibility, ty: depth, count: None },
-        wgpu::BindGroupLayoutEntry { binding: binding + 1, visibility, ty: compare, count: None },
-    ]
-}
-
 /// The sampler passes read `lamp.depth` through as the detached headlamp's shadow map: a bilinear
 /// comparison that lights a receiver where its depth is at least the stored one (reversed Z).
 pub(super) fn lamp_shadow_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {

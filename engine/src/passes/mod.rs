@@ -1,6 +1,8 @@
 //! The engine's core passes, by stage: G-buffer (+ lamp view when the headlamp is detached);
 //! lighting (direct light); composite (hdr = direct + emissive); [plugins]; view models; present.
 
+use crate::bindings::Declared;
+
 mod composite;
 mod core_resources;
 mod direct_light;
@@ -13,7 +15,7 @@ mod view_model;
 pub use crate::headlamp::LAMP_MAP_SIZE;
 pub use composite::CompositePass;
 pub use direct_light::DirectLightPass;
-pub use fullscreen::{bind_textures, color_pass, fullscreen_pipeline, procedural_pipeline, textures_layout};
+pub use fullscreen::{color_pass, fullscreen_pipeline, procedural_pipeline};
 pub use gbuffer::GBufferPass;
 pub use lamp_view::LampViewPass;
 pub(crate) use present::PresentUniform;
@@ -30,4 +32,17 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("composite.wgsl", composite::SHADER),
     ("present.wgsl", present::SHADER),
     ("view_model.wgsl", view_model::SHADER),
+];
+
+/// Every bind group the engine's WGSL declares, with the list its layout is made from: the
+/// file that declares it (an include stands for every shader that includes it) and its group
+/// (engine/tests/bindings.rs reflects the WGSL against these).
+pub const BINDINGS: &[Declared] = &[
+    Declared { shader: "common.wgsl", group: 0, layout: &crate::globals::GLOBALS },
+    Declared { shader: "scene_surface.wgsl", group: 1, layout: &crate::globals::MATERIAL },
+    Declared { shader: "direct_light.wgsl", group: 1, layout: &direct_light::INPUTS },
+    Declared { shader: "composite.wgsl", group: 1, layout: &composite::INPUTS },
+    Declared { shader: "present.wgsl", group: 1, layout: &present::INPUTS },
+    Declared { shader: "present.wgsl", group: 1, layout: &present::FILTERED_INPUTS },
+    Declared { shader: "view_model.wgsl", group: 2, layout: &view_model::INPUTS },
 ];

@@ -4,12 +4,19 @@ use std::cell::RefCell;
 use std::collections::HashMap;
 use std::rc::Rc;
 
-use super::fullscreen::{bind_textures, color_pass, procedural_pipeline, textures_layout};
+use super::fullscreen::{color_pass, procedural_pipeline};
+use crate::bindings::{Binding, Group};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::graph::{Handle, Image, PassContext, PassDecl, Read, RenderPass, Write};
 
 pub const SHADER: &str = include_str!("../../../shaders/present.wgsl");
+
+/// The view shown and how (group 1), its texture read with `textureLoad`…
+pub const INPUTS: Group = Group::new("present inputs", &[Binding::texture("source"), Binding::uniform("params")]);
+/// … or through the sampler's bilinear filter, where the format allows (`fs_upsample`).
+pub const FILTERED_INPUTS: Group =
+    Group::new("present inputs, filtered", &[Binding::filtered_texture("source"), Binding::uniform("params")]);
 
 /// How a view's texture is turned into a picture.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,14 +96,8 @@ impl PresentPass {
         let device = &gpu.device;
         Self {
             settings,
-            inputs: textures_layout(device, "present inputs", 1, true),
-            filtered_inputs: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("present inputs, filtered"),
-                entries: &[
-                    crate::globals::texture_entry(0, wgpu::ShaderStages::FRAGMENT, true),
-                    crate::globals::uniform_entry(1, wgpu::ShaderStages::FRAGMENT),
-                ],
-            }),
+            inputs: INPUTS.layout(device),
+            filtered_inputs: FILTERED_INPUTS.layout(device),
             globals_layout: layouts.globals.clone(),
             module: crate::shader::module(device, "present", SHADER, &[]),
             pipelines: HashMap::new(),
@@ -162,7 +163,12 @@ impl RenderPass for PresentPass {
             let entry = if filtered { "fs_upsample" } else { "fs_main" };
             procedural_pipeline(device, "present", module, ("vs_main", entry), &layouts, &targets, Default::default())
         });
-        let inputs = bind_textures(device, inputs_layout, &[ctx.view(&io.source)], Some(&self.params));
+        let group = if filtered { FILTERED_INPUTS } else { INPUTS };
+        let inputs = group.bind(
+            device,
+            inputs_layout,
+            &[("source", ctx.view(&io.source).into()), ("params", (&self.params).into())],
+        );
         let target = ctx.view(&io.output);
         let mut pass = color_pass(ctx.encoder, "present", target, false);
         pass.set_pipeline(pipeline);

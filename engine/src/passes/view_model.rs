@@ -11,6 +11,7 @@
 
 use super::core_resources::{CoreResources, HDR_FORMAT};
 use super::gbuffer::{raster_pipeline, DEPTH_FORMAT};
+use crate::bindings::{Binding, Group};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::gpu_instances::INSTANCE_LAYOUT;
@@ -18,6 +19,16 @@ use crate::gpu_scene::VERTEX_LAYOUT;
 use crate::graph::{Buffer, BufferDesc, Handle, Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
 
 pub const SHADER: &str = include_str!("../../../shaders/view_model.wgsl");
+
+/// The ambient cube and the detached lamp's shadow map (group 2).
+pub const INPUTS: Group = Group::new(
+    "view model inputs",
+    &[
+        Binding::storage("ambient_cube"),
+        Binding::depth_texture("lamp_depth"),
+        Binding::comparison_sampler("lamp_shadow"),
+    ],
+);
 
 /// Bytes of `view_model.irradiance`: six `vec4<f32>`.
 pub const VIEW_MODEL_IRRADIANCE_SIZE: u64 = 6 * 16;
@@ -61,25 +72,7 @@ impl ViewModelPass {
     pub fn new(gpu: &Gpu, layouts: &CoreLayouts, core: &CoreResources) -> Self {
         let device = &gpu.device;
         let module = crate::shader::module(device, "view model", SHADER, &[]);
-        let fragment = wgpu::ShaderStages::FRAGMENT;
-        let [shadow_map, shadow_compare] = super::lamp_view::lamp_shadow_entries(1, fragment);
-        let inputs = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("view model inputs"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: fragment,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                shadow_map,
-                shadow_compare,
-            ],
-        });
+        let inputs = INPUTS.layout(device);
         // Group 1 (scene_surface.wgsl's material) is not used by this pipeline.
         let pipeline = raster_pipeline(
             device,
@@ -117,18 +110,15 @@ impl RenderPass for ViewModelPass {
         if ctx.frame.instances.view_models_empty() {
             return;
         }
-        let inputs = ctx.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("view model inputs"),
-            layout: &self.inputs,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: ctx.buffer(&io.irradiance).as_entire_binding() },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(ctx.view(&io.lamp_depth)),
-                },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&self.shadow_sampler) },
+        let inputs = INPUTS.bind(
+            &ctx.gpu.device,
+            &self.inputs,
+            &[
+                ("ambient_cube", ctx.buffer(&io.irradiance).into()),
+                ("lamp_depth", ctx.view(&io.lamp_depth).into()),
+                ("lamp_shadow", (&self.shadow_sampler).into()),
             ],
-        });
+        );
         let mut pass = ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("view model"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {

@@ -2,12 +2,16 @@
 //! over the frame's radiance after the light (stage PostProcess), before the view models.
 //! docs/architecture.md, "Writing a pass and a plugin", walks through it.
 
+use engine::bindings::{Binding, Group};
 use engine::graph::{Handle, Image, PassContext, PassDecl, Read, RenderPass, Stage, Write};
 use engine::passes::{color_pass, fullscreen_pipeline, HDR_FORMAT};
 use engine::plugin::{Plugin, PluginContext};
 use engine::wgpu::{self, util::DeviceExt};
 
 pub const SHADER: &str = include_str!("depth_fog.wgsl");
+
+/// The fog and the G-buffer's positions (group 1 of depth_fog.wgsl), named as the WGSL names them.
+pub const INPUTS: Group = Group::new("depth fog", &[Binding::uniform("fog"), Binding::texture("gbuffer_position")]);
 
 /// The fog: its radiance (W·sr⁻¹·m⁻², linear RGB) and density (per metre).
 #[derive(Clone, Copy, Debug)]
@@ -45,11 +49,7 @@ struct DepthFogIo {
 impl DepthFogPass {
     fn new(ctx: &PluginContext<'_>, fog: DepthFogPlugin) -> Self {
         let device = &ctx.gpu.device;
-        let stages = wgpu::ShaderStages::FRAGMENT;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("depth fog"),
-            entries: &[engine::globals::uniform_entry(0, stages), engine::globals::texture_entry(1, stages, false)],
-        });
+        let layout = INPUTS.layout(device);
         let module = engine::shader::module(device, "depth fog", SHADER, &[]);
         // Over the frame: colour = src + dst·(1 − src.a).
         let blend = wgpu::BlendState {
@@ -85,17 +85,11 @@ impl RenderPass for DepthFogPass {
     }
 
     fn run(&mut self, io: &DepthFogIo, ctx: &mut PassContext<'_>) {
-        let inputs = ctx.gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("depth fog"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: self.fog.as_entire_binding() },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(ctx.view(&io.position)),
-                },
-            ],
-        });
+        let inputs = INPUTS.bind(
+            &ctx.gpu.device,
+            &self.layout,
+            &[("fog", (&self.fog).into()), ("gbuffer_position", ctx.view(&io.position).into())],
+        );
         let mut pass = color_pass(ctx.encoder, "depth fog", ctx.view(&io.hdr), true);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, ctx.frame.globals, &[]);
