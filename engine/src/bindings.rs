@@ -8,7 +8,7 @@ use std::fmt;
 
 /// What a binding is, as its WGSL declares it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Kind {
+pub enum BindingKind {
     /// `var<uniform>`.
     Uniform,
     /// `var<storage, read>` (`read_only`) or `var<storage, read_write>`.
@@ -31,43 +31,43 @@ pub enum Kind {
 
 /// One binding: the name of its WGSL `var` and what it is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Binding {
+pub struct ShaderBinding {
     pub name: &'static str,
-    pub kind: Kind,
+    pub kind: BindingKind,
 }
 
-impl Binding {
+impl ShaderBinding {
     pub const fn uniform(name: &'static str) -> Self {
-        Self { name, kind: Kind::Uniform }
+        Self { name, kind: BindingKind::Uniform }
     }
     /// `var<storage, read>`.
     pub const fn storage(name: &'static str) -> Self {
-        Self { name, kind: Kind::Storage { read_only: true } }
+        Self { name, kind: BindingKind::Storage { read_only: true } }
     }
     /// `var<storage, read_write>`.
     pub const fn storage_rw(name: &'static str) -> Self {
-        Self { name, kind: Kind::Storage { read_only: false } }
+        Self { name, kind: BindingKind::Storage { read_only: false } }
     }
     pub const fn texture(name: &'static str) -> Self {
-        Self { name, kind: Kind::Texture }
+        Self { name, kind: BindingKind::Texture }
     }
     pub const fn filtered_texture(name: &'static str) -> Self {
-        Self { name, kind: Kind::FilteredTexture }
+        Self { name, kind: BindingKind::FilteredTexture }
     }
     pub const fn uint_texture(name: &'static str) -> Self {
-        Self { name, kind: Kind::UintTexture }
+        Self { name, kind: BindingKind::UintTexture }
     }
     pub const fn depth_texture(name: &'static str) -> Self {
-        Self { name, kind: Kind::DepthTexture }
+        Self { name, kind: BindingKind::DepthTexture }
     }
     pub const fn sampler(name: &'static str) -> Self {
-        Self { name, kind: Kind::Sampler }
+        Self { name, kind: BindingKind::Sampler }
     }
     pub const fn comparison_sampler(name: &'static str) -> Self {
-        Self { name, kind: Kind::ComparisonSampler }
+        Self { name, kind: BindingKind::ComparisonSampler }
     }
     pub const fn storage_texture(name: &'static str, format: wgpu::TextureFormat) -> Self {
-        Self { name, kind: Kind::StorageTexture(format) }
+        Self { name, kind: BindingKind::StorageTexture(format) }
     }
 
     fn entry(&self, binding: u32) -> wgpu::BindGroupLayoutEntry {
@@ -78,15 +78,15 @@ impl Binding {
             multisampled: false,
         };
         let ty = match self.kind {
-            Kind::Uniform => buffer(wgpu::BufferBindingType::Uniform),
-            Kind::Storage { read_only } => buffer(wgpu::BufferBindingType::Storage { read_only }),
-            Kind::Texture => texture(wgpu::TextureSampleType::Float { filterable: false }),
-            Kind::FilteredTexture => texture(wgpu::TextureSampleType::Float { filterable: true }),
-            Kind::UintTexture => texture(wgpu::TextureSampleType::Uint),
-            Kind::DepthTexture => texture(wgpu::TextureSampleType::Depth),
-            Kind::Sampler => wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-            Kind::ComparisonSampler => wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-            Kind::StorageTexture(format) => wgpu::BindingType::StorageTexture {
+            BindingKind::Uniform => buffer(wgpu::BufferBindingType::Uniform),
+            BindingKind::Storage { read_only } => buffer(wgpu::BufferBindingType::Storage { read_only }),
+            BindingKind::Texture => texture(wgpu::TextureSampleType::Float { filterable: false }),
+            BindingKind::FilteredTexture => texture(wgpu::TextureSampleType::Float { filterable: true }),
+            BindingKind::UintTexture => texture(wgpu::TextureSampleType::Uint),
+            BindingKind::DepthTexture => texture(wgpu::TextureSampleType::Depth),
+            BindingKind::Sampler => wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            BindingKind::ComparisonSampler => wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+            BindingKind::StorageTexture(format) => wgpu::BindingType::StorageTexture {
                 access: wgpu::StorageTextureAccess::WriteOnly,
                 format,
                 view_dimension: wgpu::TextureViewDimension::D2,
@@ -94,7 +94,7 @@ impl Binding {
         };
         // Vertex shaders may not write storage; every other binding is visible to every stage.
         let visibility = match self.kind {
-            Kind::Storage { read_only: false } | Kind::StorageTexture(_) => {
+            BindingKind::Storage { read_only: false } | BindingKind::StorageTexture(_) => {
                 wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE
             }
             _ => wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
@@ -108,7 +108,7 @@ impl Binding {
 #[derive(Clone, Copy, Debug)]
 pub struct Group {
     pub label: &'static str,
-    pub bindings: &'static [Binding],
+    pub bindings: &'static [ShaderBinding],
 }
 
 /// What is bound to a binding.
@@ -138,7 +138,7 @@ impl<'a> From<&'a wgpu::Sampler> for Resource<'a> {
 }
 
 impl Group {
-    pub const fn new(label: &'static str, bindings: &'static [Binding]) -> Self {
+    pub const fn new(label: &'static str, bindings: &'static [ShaderBinding]) -> Self {
         Self { label, bindings }
     }
 
@@ -223,20 +223,36 @@ impl fmt::Display for NameMismatch {
 }
 
 /// Where a [`Group`] is declared in WGSL: the file (a shader as its crate's `SHADERS` names it,
-/// or an include, for every shader that includes it) and the `@group` index.
+/// or an include, for every shader that includes it) and the `@group` index; and, where the
+/// layout serves some entry points only, which (empty: every one).
 #[derive(Clone, Copy, Debug)]
-pub struct Declared {
+pub struct WgslGroup {
     pub shader: &'static str,
     pub group: u32,
     pub layout: &'static Group,
+    pub entry_points: &'static [&'static str],
+}
+
+impl WgslGroup {
+    pub const fn new(shader: &'static str, group: u32, layout: &'static Group) -> Self {
+        Self { shader, group, layout, entry_points: &[] }
+    }
+
+    /// The layout serves `entry_points` alone: it may stop short of the WGSL's group, whose
+    /// later bindings those entry points leave unread.
+    pub const fn for_entry_points(self, entry_points: &'static [&'static str]) -> Self {
+        Self { entry_points, ..self }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    const GROUP: Group =
-        Group::new("test", &[Binding::uniform("params"), Binding::texture("normal"), Binding::texture("position")]);
+    const GROUP: Group = Group::new(
+        "test",
+        &[ShaderBinding::uniform("params"), ShaderBinding::texture("normal"), ShaderBinding::texture("position")],
+    );
 
     #[test]
     fn resources_are_matched_by_name_in_any_order_and_a_wrong_name_is_named() {
@@ -247,9 +263,9 @@ mod tests {
 
     #[test]
     fn the_layout_numbers_the_bindings_in_order_and_keeps_writes_out_of_vertex_shaders() {
-        let writes = Binding::storage_texture("out", wgpu::TextureFormat::Rgba32Float).entry(3);
+        let writes = ShaderBinding::storage_texture("out", wgpu::TextureFormat::Rgba32Float).entry(3);
         assert_eq!(writes.binding, 3);
         assert!(!writes.visibility.contains(wgpu::ShaderStages::VERTEX));
-        assert!(Binding::storage("nodes").entry(0).visibility.contains(wgpu::ShaderStages::VERTEX));
+        assert!(ShaderBinding::storage("nodes").entry(0).visibility.contains(wgpu::ShaderStages::VERTEX));
     }
 }

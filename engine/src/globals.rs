@@ -5,7 +5,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec4};
 use scene::{LightKind, PunctualLight};
 
-use crate::bindings::{Binding, Group};
+use crate::bindings::{Group, ShaderBinding};
 use crate::gpu::Gpu;
 use crate::headlamp::{distribution_texels, LampFrustum};
 use crate::view_state::ViewState;
@@ -20,10 +20,10 @@ pub struct CoreLayouts {
 pub const GLOBALS: Group = Group::new(
     "globals",
     &[
-        Binding::uniform("globals"),
-        Binding::storage("lights"),
-        Binding::filtered_texture("lamp_distribution"),
-        Binding::sampler("linear_clamp"),
+        ShaderBinding::uniform("globals"),
+        ShaderBinding::storage("lights"),
+        ShaderBinding::filtered_texture("lamp_distribution"),
+        ShaderBinding::sampler("linear_clamp"),
     ],
 );
 
@@ -32,13 +32,13 @@ pub const GLOBALS: Group = Group::new(
 pub const MATERIAL: Group = Group::new(
     "material",
     &[
-        Binding::uniform("material"),
-        Binding::filtered_texture("base_color_texture"),
-        Binding::sampler("base_color_sampler"),
-        Binding::filtered_texture("emissive_texture"),
-        Binding::sampler("emissive_sampler"),
-        Binding::filtered_texture("metallic_roughness_texture"),
-        Binding::sampler("metallic_roughness_sampler"),
+        ShaderBinding::uniform("material"),
+        ShaderBinding::filtered_texture("base_color_texture"),
+        ShaderBinding::sampler("base_color_sampler"),
+        ShaderBinding::filtered_texture("emissive_texture"),
+        ShaderBinding::sampler("emissive_sampler"),
+        ShaderBinding::filtered_texture("metallic_roughness_texture"),
+        ShaderBinding::sampler("metallic_roughness_sampler"),
     ],
 );
 

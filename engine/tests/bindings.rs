@@ -4,11 +4,11 @@
 
 mod binding_check;
 
-use engine::bindings::{Binding, Declared, Group};
+use engine::bindings::{Group, ShaderBinding, WgslGroup};
 
 #[test]
 fn every_engine_bind_group_is_its_wgsl() {
-    let problems = binding_check::check(engine::passes::SHADERS, &[], engine::passes::BINDINGS);
+    let problems = binding_check::check(engine::passes::SHADERS, &[], engine::passes::BINDINGS, &[]);
     assert!(problems.is_empty(), "the engine's bind groups and its WGSL disagree:\n{}", problems.join("\n"));
 }
 
@@ -26,21 +26,38 @@ fn main() {
 
 const RIGHT: Group = Group::new(
     "sample",
-    &[Binding::uniform("params"), Binding::texture("normal"), Binding::texture("position"), Binding::storage_rw("out")],
+    &[
+        ShaderBinding::uniform("params"),
+        ShaderBinding::texture("normal"),
+        ShaderBinding::texture("position"),
+        ShaderBinding::storage_rw("out"),
+    ],
 );
 const SWAPPED: Group = Group::new(
     "sample",
-    &[Binding::uniform("params"), Binding::texture("position"), Binding::texture("normal"), Binding::storage_rw("out")],
+    &[
+        ShaderBinding::uniform("params"),
+        ShaderBinding::texture("position"),
+        ShaderBinding::texture("normal"),
+        ShaderBinding::storage_rw("out"),
+    ],
 );
 const WRONG_KIND: Group = Group::new(
     "sample",
-    &[Binding::uniform("params"), Binding::texture("normal"), Binding::texture("position"), Binding::storage("out")],
+    &[
+        ShaderBinding::uniform("params"),
+        ShaderBinding::texture("normal"),
+        ShaderBinding::texture("position"),
+        ShaderBinding::storage("out"),
+    ],
 );
-const SHORT: Group =
-    Group::new("sample", &[Binding::uniform("params"), Binding::texture("normal"), Binding::texture("position")]);
+const SHORT: Group = Group::new(
+    "sample",
+    &[ShaderBinding::uniform("params"), ShaderBinding::texture("normal"), ShaderBinding::texture("position")],
+);
 
 fn problems(source: &str, group: u32, layout: &'static Group) -> Vec<String> {
-    binding_check::check(&[("sample.wgsl", source)], &[], &[Declared { shader: "sample.wgsl", group, layout }])
+    binding_check::check(&[("sample.wgsl", source)], &[], &[WgslGroup::new("sample.wgsl", group, layout)], &[])
 }
 
 #[test]

@@ -12,11 +12,12 @@
 //! on the resolution: the indirect target is kept small enough ([`fit_cuts_budget`]) that
 //! every tile's cut fits the budget.
 
+use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::graph::BufferDesc;
 use engine::wgpu;
 
-use crate::bindings::{bind, compute_pipeline, compute_pipeline_with, layout, Resource as R, Slot as S};
 use crate::gpu_types::{GATHER_STATS_SIZE, RETRY_HEADER};
+use crate::pipelines::{compute_pipeline, compute_pipeline_with};
 use crate::quadtree::Quadtree;
 use crate::shader::module;
 
@@ -24,6 +25,65 @@ pub const CUTS_SHADER: &str = include_str!("../../shaders/gi/cuts.wgsl");
 pub const GATHER_SUBGROUP_SHADER: &str = include_str!("../../shaders/gi/gather_subgroup.wgsl");
 pub const GATHER_INVOCATION_SHADER: &str = include_str!("../../shaders/gi/gather_invocation.wgsl");
 pub const SIGHT_SHADER: &str = include_str!("../../shaders/gi/sight.wgsl");
+
+const IRRADIANCE: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// The cuts' group 1 (cuts.wgsl).
+pub const CUTS: Group = Group::new(
+    "gi cuts",
+    &[
+        B::uniform("params"),
+        B::uniform("table"),
+        B::storage("nodes"),
+        B::texture("gbuffer_normal"),
+        B::texture("gbuffer_position"),
+        B::storage_rw("cuts"),
+        B::storage_rw("stats"),
+        B::storage_rw("centre_lights"),
+        B::storage_rw("retry"),
+        B::storage_rw("receiver_texels"),
+    ],
+);
+/// The cuts' group 2: the retry dispatch's arguments, written by `main`.
+pub const RETRY_ARGS: Group = Group::new("gi cuts retry arguments", &[B::storage_rw("retry_dispatch")]);
+/// The sight's group 1 (sight.wgsl).
+pub const SIGHT: Group = Group::new(
+    "gi sight",
+    &[
+        B::uniform("params"),
+        B::uniform("table"),
+        B::texture("gbuffer_normal"),
+        B::texture("gbuffer_position"),
+        B::storage("cuts"),
+        B::storage("receiver_texels"),
+        B::storage_rw("sight"),
+        B::texture("sight_depth"),
+    ],
+);
+/// The sum's group 1 (gather.wgsl).
+pub const GATHER: Group = Group::new(
+    "gi gather",
+    &[
+        B::uniform("params"),
+        B::uniform("table"),
+        B::texture("gbuffer_normal"),
+        B::texture("gbuffer_position"),
+        B::storage_texture("irradiance_out", IRRADIANCE),
+        B::storage("cuts"),
+        B::texture("accumulate"),
+        B::storage_texture("bounce_out", IRRADIANCE),
+        B::storage("receiver_texels"),
+        B::storage("sight"),
+    ],
+);
+
+/// Where the gather's groups are declared.
+pub const BINDINGS: &[WgslGroup] = &[
+    WgslGroup::new("gi/cuts.wgsl", 1, &CUTS),
+    WgslGroup::new("gi/cuts.wgsl", 2, &RETRY_ARGS),
+    WgslGroup::new("gi/sight.wgsl", 1, &SIGHT),
+    WgslGroup::new("gather.wgsl", 1, &GATHER),
+];
 
 /// How the sum's invocations load their lights.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -178,48 +238,13 @@ impl CutsLayout {
 
 impl Gather {
     pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, lanes: SumLanes) -> Self {
-        let storage = |read_only| S::Storage { read_only };
-        let cuts_layout = layout(
-            device,
-            "gi cuts",
-            &[
-                S::Uniform,
-                S::Uniform,
-                storage(true),
-                S::Texture,
-                S::Texture,
-                storage(false),
-                storage(false),
-                storage(false),
-                storage(false),
-                storage(false),
-            ],
-        );
-        let retry_args_layout = layout(device, "gi cuts retry arguments", &[storage(false)]);
-        let sight_layout = layout(
-            device,
-            "gi sight",
-            &[S::Uniform, S::Uniform, S::Texture, S::Texture, storage(true), storage(true), storage(false), S::Texture],
-        );
+        let cuts_layout = CUTS.layout(device);
+        let retry_args_layout = RETRY_ARGS.layout(device);
+        let sight_layout = SIGHT.layout(device);
         let sight_module = module(device, "gi sight", SIGHT_SHADER);
         let sight_pipeline =
             compute_pipeline(device, "gi sight", &sight_module, "main", &[Some(globals), Some(&sight_layout)]);
-        let layout = layout(
-            device,
-            "gi gather",
-            &[
-                S::Uniform,
-                S::Uniform,
-                S::Texture,
-                S::Texture,
-                S::StorageTexture(wgpu::TextureFormat::Rgba32Float),
-                storage(true),
-                S::Texture,
-                S::StorageTexture(wgpu::TextureFormat::Rgba32Float),
-                storage(true),
-                storage(true),
-            ],
-        );
+        let layout = GATHER.layout(device);
         let cuts_module = module(device, "gi cuts", CUTS_SHADER);
         let cuts_pipeline = compute_pipeline(
             device,
@@ -297,37 +322,38 @@ impl Gather {
         // The cuts pass sets the arguments' y and z, and counts x up from 0.
         encoder.clear_buffer(&scratch.retry, 0, Some(RETRY_HEADER));
         encoder.clear_buffer(&scratch.retry_args, 0, None);
-        let cuts_group = bind(
+        let cuts_group = CUTS.bind(
             device,
             &self.cuts_layout,
             &[
-                R::Buffer(t.params),
-                R::Buffer(t.levels),
-                R::Buffer(t.nodes),
-                R::View(t.normal),
-                R::View(t.position),
-                R::Buffer(t.cuts),
-                R::Buffer(t.stats),
-                R::Buffer(t.lights),
-                R::Buffer(&scratch.retry),
-                R::Buffer(t.receivers),
+                ("params", t.params.into()),
+                ("table", t.levels.into()),
+                ("nodes", t.nodes.into()),
+                ("gbuffer_normal", t.normal.into()),
+                ("gbuffer_position", t.position.into()),
+                ("cuts", t.cuts.into()),
+                ("stats", t.stats.into()),
+                ("centre_lights", t.lights.into()),
+                ("retry", (&scratch.retry).into()),
+                ("receiver_texels", t.receivers.into()),
             ],
         );
-        let retry_args = bind(device, &self.retry_args_layout, &[R::Buffer(&scratch.retry_args)]);
-        let group = bind(
+        let retry_args =
+            RETRY_ARGS.bind(device, &self.retry_args_layout, &[("retry_dispatch", (&scratch.retry_args).into())]);
+        let group = GATHER.bind(
             device,
             &self.layout,
             &[
-                R::Buffer(t.params),
-                R::Buffer(t.levels),
-                R::View(t.normal),
-                R::View(t.position),
-                R::View(t.irradiance),
-                R::Buffer(t.cuts),
-                R::View(t.accumulate),
-                R::View(t.bounce),
-                R::Buffer(t.receivers),
-                R::Buffer(&scratch.sight),
+                ("params", t.params.into()),
+                ("table", t.levels.into()),
+                ("gbuffer_normal", t.normal.into()),
+                ("gbuffer_position", t.position.into()),
+                ("irradiance_out", t.irradiance.into()),
+                ("cuts", t.cuts.into()),
+                ("accumulate", t.accumulate.into()),
+                ("bounce_out", t.bounce.into()),
+                ("receiver_texels", t.receivers.into()),
+                ("sight", (&scratch.sight).into()),
             ],
         );
         let mut pass = encoder
@@ -341,18 +367,18 @@ impl Gather {
         pass.set_bind_group(1, &cuts_group, &[]);
         pass.dispatch_workgroups_indirect(&scratch.retry_args, 0);
         if let Some(depth) = t.sight_depth {
-            let sight = bind(
+            let sight = SIGHT.bind(
                 device,
                 &self.sight_layout,
                 &[
-                    R::Buffer(t.params),
-                    R::Buffer(t.levels),
-                    R::View(t.normal),
-                    R::View(t.position),
-                    R::Buffer(t.cuts),
-                    R::Buffer(t.receivers),
-                    R::Buffer(&scratch.sight),
-                    R::View(depth),
+                    ("params", t.params.into()),
+                    ("table", t.levels.into()),
+                    ("gbuffer_normal", t.normal.into()),
+                    ("gbuffer_position", t.position.into()),
+                    ("cuts", t.cuts.into()),
+                    ("receiver_texels", t.receivers.into()),
+                    ("sight", (&scratch.sight).into()),
+                    ("sight_depth", depth.into()),
                 ],
             );
             pass.set_pipeline(&self.sight_pipeline);

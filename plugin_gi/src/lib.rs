@@ -9,7 +9,6 @@
 //! distribution table's lights of the same pyramid, drawn as light volumes (`light_volumes.rs`).
 //! It depends on the engine's public API only and registers everything in [`GiPlugin::build`].
 
-mod bindings;
 pub mod distribution_table;
 mod gather;
 pub mod gpu_types;
@@ -17,6 +16,7 @@ mod grids;
 mod light_volumes;
 pub mod metrics;
 mod passes;
+mod pipelines;
 mod pyramid;
 pub mod quadtree;
 pub mod readback;
@@ -33,7 +33,7 @@ use engine::plugin::{Plugin, PluginContext};
 
 pub use gather::SumLanes;
 pub use gpu_types::{names, ReflectionLight};
-pub use passes::SHADERS;
+pub use passes::{bindings, SHADERS};
 pub use settings::{FieldInfo, GiSettings, Method, RETIRED};
 pub use shader::INCLUDES as SHADER_INCLUDES;
 pub use shared::{GiHandle, GiStats};

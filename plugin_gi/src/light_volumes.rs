@@ -6,14 +6,15 @@
 //! (light_volumes.wgsl), interleaved over N×N sub-images, which are split before and joined
 //! after (sub_images.wgsl). Three dispatches and one draw, whatever the number of lights.
 
+use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::headlamp::distribution_texels;
 use engine::scene::IntensityDistribution;
 use engine::wgpu;
 use engine::wgpu::util::DeviceExt;
 
-use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S, TEXEL_GROUP};
 use crate::distribution_table::{lamp_importance, DistributionTable};
 use crate::gpu_types::VOLUME_LIGHT_SIZE;
+use crate::pipelines::{compute_pipeline, TEXEL_GROUP};
 use crate::quadtree::Quadtree;
 use crate::shader::module;
 
@@ -29,6 +30,56 @@ const COARSE_SHARE: u32 = 4;
 pub const LIGHTS_PER_SLOT: u32 = 32;
 /// The receivers' positions and normals in their sub-images (sub_images.wgsl).
 const RECEIVERS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+
+/// The light stream's group 1 (light_stream.wgsl).
+pub const STREAM: Group = Group::new(
+    "gi light stream",
+    &[
+        B::uniform("table"),
+        B::storage("nodes"),
+        B::storage("entries"),
+        B::storage_rw("stream"),
+        B::storage_rw("args"),
+        B::storage_rw("stats"),
+        B::storage_rw("shown"),
+        B::uniform("params"),
+    ],
+);
+/// The sub-images' group 1, for both entry points (sub_images.wgsl).
+pub const SUB_IMAGES: Group = Group::new(
+    "gi sub-images",
+    &[
+        B::uniform("params"),
+        B::texture("gbuffer_normal"),
+        B::texture("gbuffer_position"),
+        B::storage_rw("receiver_texels"),
+    ],
+);
+/// `split`'s group 2: the receivers laid out as sub-images.
+pub const SPLIT: Group = Group::new("gi sub-images split", &[B::storage_texture("receivers_out", RECEIVERS_FORMAT)]);
+/// `join`'s group 3: the shaded sub-images back into the indirect target.
+pub const JOIN: Group = Group::new(
+    "gi sub-images join",
+    &[
+        B::uint_texture("receivers_in"),
+        B::texture("shaded"),
+        B::storage_texture("irradiance_out", wgpu::TextureFormat::Rgba32Float),
+    ],
+);
+/// The light volumes' group 1 (light_volumes.wgsl).
+pub const VOLUMES: Group = Group::new(
+    "gi light volumes",
+    &[B::uniform("params"), B::storage("stream"), B::uint_texture("receivers"), B::texture("sight_depth")],
+);
+
+/// Where the article's groups are declared.
+pub const BINDINGS: &[WgslGroup] = &[
+    WgslGroup::new("gi/light_stream.wgsl", 1, &STREAM),
+    WgslGroup::new("gi/sub_images.wgsl", 1, &SUB_IMAGES),
+    WgslGroup::new("gi/sub_images.wgsl", 2, &SPLIT),
+    WgslGroup::new("gi/sub_images.wgsl", 3, &JOIN),
+    WgslGroup::new("gi/light_volumes.wgsl", 1, &VOLUMES),
+];
 
 /// What the table is made for: when any of it changes, it is made again.
 #[derive(Clone, Copy, Debug)]
@@ -124,31 +175,13 @@ struct Scratch {
 
 impl LightVolumes {
     pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, float32_blendable: bool) -> Self {
-        let storage = |read_only| S::Storage { read_only };
-        let stream_layout = layout(
-            device,
-            "gi light stream",
-            &[
-                S::Uniform,
-                storage(true),
-                storage(true),
-                storage(false),
-                storage(false),
-                storage(false),
-                storage(false),
-                S::Uniform,
-            ],
-        );
+        let stream_layout = STREAM.layout(device);
         let stream_module = module(device, "gi light stream", STREAM_SHADER);
         let stream_pipeline =
             compute_pipeline(device, "gi light stream", &stream_module, "main", &[Some(globals), Some(&stream_layout)]);
-        let common_layout = layout(device, "gi sub-images", &[S::Uniform, S::Texture, S::Texture, storage(false)]);
-        let split_layout = layout(device, "gi sub-images split", &[S::StorageTexture(RECEIVERS_FORMAT)]);
-        let join_layout = layout(
-            device,
-            "gi sub-images join",
-            &[S::UintTexture, S::Texture, S::StorageTexture(wgpu::TextureFormat::Rgba32Float)],
-        );
+        let common_layout = SUB_IMAGES.layout(device);
+        let split_layout = SPLIT.layout(device);
+        let join_layout = JOIN.layout(device);
         let sub_module = module(device, "gi sub-images", SUB_IMAGES_SHADER);
         let split_pipeline = compute_pipeline(
             device,
@@ -164,8 +197,7 @@ impl LightVolumes {
             "join",
             &[Some(globals), Some(&common_layout), None, Some(&join_layout)],
         );
-        let volumes_layout =
-            layout(device, "gi light volumes", &[S::Uniform, storage(true), S::UintTexture, S::Texture]);
+        let volumes_layout = VOLUMES.layout(device);
         let shaded_format =
             if float32_blendable { wgpu::TextureFormat::Rgba32Float } else { wgpu::TextureFormat::Rgba16Float };
         let add = wgpu::BlendComponent {
@@ -295,24 +327,29 @@ impl LightVolumes {
         }
         let (_, s) = self.scratch.as_ref().expect("sized above");
         let (_, _, table) = self.table.as_ref().expect("made above");
-        let common = bind(
+        let common = SUB_IMAGES.bind(
             device,
             &self.common_layout,
-            &[R::Buffer(t.params), R::View(t.normal), R::View(t.position), R::Buffer(t.receivers)],
+            &[
+                ("params", t.params.into()),
+                ("gbuffer_normal", t.normal.into()),
+                ("gbuffer_position", t.position.into()),
+                ("receiver_texels", t.receivers.into()),
+            ],
         );
-        let split = bind(device, &self.split_layout, &[R::View(&s.receivers)]);
-        let stream = bind(
+        let split = SPLIT.bind(device, &self.split_layout, &[("receivers_out", (&s.receivers).into())]);
+        let stream = STREAM.bind(
             device,
             &self.stream_layout,
             &[
-                R::Buffer(t.levels),
-                R::Buffer(t.nodes),
-                R::Buffer(table),
-                R::Buffer(&s.stream),
-                R::Buffer(&s.args),
-                R::Buffer(t.stats),
-                R::Buffer(t.lights),
-                R::Buffer(t.params),
+                ("table", t.levels.into()),
+                ("nodes", t.nodes.into()),
+                ("entries", table.into()),
+                ("stream", (&s.stream).into()),
+                ("args", (&s.args).into()),
+                ("stats", t.stats.into()),
+                ("shown", t.lights.into()),
+                ("params", t.params.into()),
             ],
         );
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -330,10 +367,15 @@ impl LightVolumes {
         drop(pass);
 
         let depth = t.sight_depth.unwrap_or(t.sink);
-        let volumes = bind(
+        let volumes = VOLUMES.bind(
             device,
             &self.volumes_layout,
-            &[R::Buffer(t.params), R::Buffer(&s.stream), R::View(&s.receivers), R::View(depth)],
+            &[
+                ("params", t.params.into()),
+                ("stream", (&s.stream).into()),
+                ("receivers", (&s.receivers).into()),
+                ("sight_depth", depth.into()),
+            ],
         );
         let mut pass = engine::passes::color_pass(encoder, "gi light volumes", &s.shaded, false);
         pass.set_pipeline(&self.volumes_pipelines[usize::from(t.sight_depth.is_some())]);
@@ -342,7 +384,15 @@ impl LightVolumes {
         pass.draw_indirect(&s.args, 0);
         drop(pass);
 
-        let join = bind(device, &self.join_layout, &[R::View(&s.receivers), R::View(&s.shaded), R::View(t.irradiance)]);
+        let join = JOIN.bind(
+            device,
+            &self.join_layout,
+            &[
+                ("receivers_in", (&s.receivers).into()),
+                ("shaded", (&s.shaded).into()),
+                ("irradiance_out", t.irradiance.into()),
+            ],
+        );
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("gi sub-images join"),
             timestamp_writes: None,

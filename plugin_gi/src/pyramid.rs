@@ -4,15 +4,35 @@
 //! Its node buffer and level table are graph resources: the passes that build and read a
 //! pyramid declare them.
 
+use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::graph::BufferDesc;
 use engine::wgpu;
 
-use crate::bindings::{bind, compute_pipeline, compute_pipeline_with, layout, Resource as R, Slot as S};
 use crate::gpu_types::{Levels, NODE_SIZE};
+use crate::pipelines::{compute_pipeline, compute_pipeline_with};
 use crate::quadtree::Quadtree;
 use crate::shader::module;
 
 pub const SHADER: &str = include_str!("../../shaders/gi/pyramid.wgsl");
+
+/// The pyramid's group 1 (pyramid.wgsl).
+pub const PYRAMID: Group = Group::new(
+    "gi pyramid",
+    &[
+        B::texture("gbuffer_albedo"),
+        B::texture("gbuffer_normal"),
+        B::texture("gbuffer_position"),
+        B::uniform("params"),
+        B::uniform("table"),
+        B::storage_rw("nodes"),
+        B::storage_texture("flux_out", wgpu::TextureFormat::Rgba32Float),
+        B::storage_texture("flux_view_out", wgpu::TextureFormat::Rgba16Float),
+        B::texture("previous_irradiance"),
+    ],
+);
+
+/// Where the pyramid's group is declared.
+pub const BINDINGS: &[WgslGroup] = &[WgslGroup::new("gi/pyramid.wgsl", 1, &PYRAMID)];
 
 /// The levels a workgroup merges above its GROUP_SIDE × GROUP_SIDE nodes, in workgroup memory
 /// (`GROUP_LEVELS` in pyramid.wgsl): the first dispatch builds levels 0 to GROUP_LEVELS, the
@@ -89,21 +109,7 @@ pub struct PyramidPipelines {
 
 impl PyramidPipelines {
     pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, source: FluxSource) -> Self {
-        let layout = layout(
-            device,
-            "gi pyramid",
-            &[
-                S::Texture,
-                S::Texture,
-                S::Texture,
-                S::Uniform,
-                S::Uniform,
-                S::Storage { read_only: false },
-                S::StorageTexture(wgpu::TextureFormat::Rgba32Float),
-                S::StorageTexture(wgpu::TextureFormat::Rgba16Float),
-                S::Texture,
-            ],
-        );
+        let layout = PYRAMID.layout(device);
         let module = module(device, "gi pyramid", SHADER);
         let layouts = [Some(globals), Some(&layout)];
         let from = f64::from(source.code());
@@ -128,19 +134,19 @@ impl PyramidPipelines {
         size: (u32, u32),
         b: &PyramidBindings<'_>,
     ) -> u32 {
-        let group = bind(
+        let group = PYRAMID.bind(
             device,
             &self.layout,
             &[
-                R::View(b.albedo),
-                R::View(b.normal),
-                R::View(b.position),
-                R::Buffer(b.params),
-                R::Buffer(b.levels),
-                R::Buffer(b.nodes),
-                R::View(b.flux),
-                R::View(b.flux_view),
-                R::View(b.previous),
+                ("gbuffer_albedo", b.albedo.into()),
+                ("gbuffer_normal", b.normal.into()),
+                ("gbuffer_position", b.position.into()),
+                ("params", b.params.into()),
+                ("table", b.levels.into()),
+                ("nodes", b.nodes.into()),
+                ("flux_out", b.flux.into()),
+                ("flux_view_out", b.flux_view.into()),
+                ("previous_irradiance", b.previous.into()),
             ],
         );
         let mut pass = encoder

@@ -5,8 +5,8 @@
 use engine::shared_constants::{SharedConstant, Workgroup};
 use engine::{shared_constant, workgroup};
 
-use crate::bindings::TEXEL_GROUP;
 use crate::gather::{CUTS_GROUP, TILE};
+use crate::pipelines::TEXEL_GROUP;
 use crate::pyramid::GROUP_SIDE;
 
 /// WGSL constants with the value of a Rust constant.

@@ -3,13 +3,23 @@
 //! once a frame by the first bounce's gather (cuts) or the light volumes (article), as the
 //! graph image `gi.sight_depth`.
 
+use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::graph::{Handle, Image, PassContext, PassDecl, Read, TextureDesc, Write};
 use engine::wgpu;
 
-use crate::bindings::{bind, compute_pipeline, layout, Resource as R, Slot as S, TEXEL_GROUP};
+use crate::pipelines::{compute_pipeline, TEXEL_GROUP};
 use crate::shader::module;
 
 pub const SHADER: &str = include_str!("../../shaders/gi/sight_depth.wgsl");
+
+/// The sight depth's group 1 (sight_depth.wgsl).
+pub const SIGHT_DEPTH: Group = Group::new(
+    "gi sight depth",
+    &[B::texture("gbuffer_position"), B::storage_texture("depth", wgpu::TextureFormat::R32Float)],
+);
+
+/// Where its group is declared.
+pub const BINDINGS: &[WgslGroup] = &[WgslGroup::new("gi/sight_depth.wgsl", 1, &SIGHT_DEPTH)];
 
 /// The sight depth for a G-buffer of `gbuffer` texels: half its size each way, rounded up.
 fn sight_depth_desc(gbuffer: (u32, u32)) -> TextureDesc {
@@ -30,7 +40,7 @@ pub struct SightDepth {
 
 impl SightDepth {
     pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout) -> Self {
-        let layout = layout(device, "gi sight depth", &[S::Texture, S::StorageTexture(wgpu::TextureFormat::R32Float)]);
+        let layout = SIGHT_DEPTH.layout(device);
         let module = module(device, "gi sight depth", SHADER);
         let pipeline = compute_pipeline(device, "gi sight depth", &module, "main", &[Some(globals), Some(&layout)]);
         Self { layout, pipeline }
@@ -40,7 +50,11 @@ impl SightDepth {
     /// returns the number of dispatches, one.
     pub fn record(&self, ctx: &mut PassContext<'_>, position: &Read<Image>, depth: &Write<Image>) -> u32 {
         let size = ctx.texture(depth).size();
-        let group = bind(&ctx.gpu.device, &self.layout, &[R::View(ctx.view(position)), R::View(ctx.view(depth))]);
+        let group = SIGHT_DEPTH.bind(
+            &ctx.gpu.device,
+            &self.layout,
+            &[("gbuffer_position", ctx.view(position).into()), ("depth", ctx.view(depth).into())],
+        );
         let mut pass = ctx
             .encoder
             .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi sight depth"), timestamp_writes: None });

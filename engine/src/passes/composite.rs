@@ -2,7 +2,7 @@
 
 use super::core_resources::{CoreResources, HDR_FORMAT};
 use super::fullscreen::{color_pass, fullscreen_pipeline};
-use crate::bindings::{Binding, Group};
+use crate::bindings::{Group, ShaderBinding};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::graph::{Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
@@ -10,8 +10,10 @@ use crate::graph::{Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, 
 pub const SHADER: &str = include_str!("../../../shaders/composite.wgsl");
 
 /// The direct light and the emission it adds to (group 1).
-pub const INPUTS: Group =
-    Group::new("composite inputs", &[Binding::texture("direct_radiance"), Binding::texture("gbuffer_emissive")]);
+pub const INPUTS: Group = Group::new(
+    "composite inputs",
+    &[ShaderBinding::texture("direct_radiance"), ShaderBinding::texture("gbuffer_emissive")],
+);
 
 pub struct CompositePass {
     pipeline: wgpu::RenderPipeline,

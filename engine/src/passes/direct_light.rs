@@ -4,7 +4,7 @@
 
 use super::core_resources::{CoreResources, HDR_FORMAT};
 use super::fullscreen::{color_pass, fullscreen_pipeline};
-use crate::bindings::{Binding, Group};
+use crate::bindings::{Group, ShaderBinding};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::graph::{Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
@@ -15,12 +15,12 @@ pub const SHADER: &str = include_str!("../../../shaders/direct_light.wgsl");
 pub const INPUTS: Group = Group::new(
     "direct light inputs",
     &[
-        Binding::texture("gbuffer_albedo"),
-        Binding::texture("gbuffer_normal"),
-        Binding::texture("gbuffer_position"),
-        Binding::depth_texture("lamp_depth"),
-        Binding::comparison_sampler("lamp_shadow"),
-        Binding::texture("gbuffer_specular"),
+        ShaderBinding::texture("gbuffer_albedo"),
+        ShaderBinding::texture("gbuffer_normal"),
+        ShaderBinding::texture("gbuffer_position"),
+        ShaderBinding::depth_texture("lamp_depth"),
+        ShaderBinding::comparison_sampler("lamp_shadow"),
+        ShaderBinding::texture("gbuffer_specular"),
     ],
 );
 

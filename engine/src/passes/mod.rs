@@ -1,7 +1,7 @@
 //! The engine's core passes, by stage: G-buffer (+ lamp view when the headlamp is detached);
 //! lighting (direct light); composite (hdr = direct + emissive); [plugins]; view models; present.
 
-use crate::bindings::Declared;
+use crate::bindings::WgslGroup;
 
 mod composite;
 mod core_resources;
@@ -37,12 +37,12 @@ pub const SHADERS: &[(&str, &str)] = &[
 /// Every bind group the engine's WGSL declares, with the list its layout is made from: the
 /// file that declares it (an include stands for every shader that includes it) and its group
 /// (engine/tests/bindings.rs reflects the WGSL against these).
-pub const BINDINGS: &[Declared] = &[
-    Declared { shader: "common.wgsl", group: 0, layout: &crate::globals::GLOBALS },
-    Declared { shader: "scene_surface.wgsl", group: 1, layout: &crate::globals::MATERIAL },
-    Declared { shader: "direct_light.wgsl", group: 1, layout: &direct_light::INPUTS },
-    Declared { shader: "composite.wgsl", group: 1, layout: &composite::INPUTS },
-    Declared { shader: "present.wgsl", group: 1, layout: &present::INPUTS },
-    Declared { shader: "present.wgsl", group: 1, layout: &present::FILTERED_INPUTS },
-    Declared { shader: "view_model.wgsl", group: 2, layout: &view_model::INPUTS },
+pub const BINDINGS: &[WgslGroup] = &[
+    WgslGroup::new("common.wgsl", 0, &crate::globals::GLOBALS),
+    WgslGroup::new("scene_surface.wgsl", 1, &crate::globals::MATERIAL),
+    WgslGroup::new("direct_light.wgsl", 1, &direct_light::INPUTS),
+    WgslGroup::new("composite.wgsl", 1, &composite::INPUTS),
+    WgslGroup::new("present.wgsl", 1, &present::INPUTS),
+    WgslGroup::new("present.wgsl", 1, &present::FILTERED_INPUTS),
+    WgslGroup::new("view_model.wgsl", 2, &view_model::INPUTS),
 ];

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::rc::Rc;
 
 use super::fullscreen::{color_pass, procedural_pipeline};
-use crate::bindings::{Binding, Group};
+use crate::bindings::{Group, ShaderBinding};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::graph::{Handle, Image, PassContext, PassDecl, Read, RenderPass, Write};
@@ -13,10 +13,13 @@ use crate::graph::{Handle, Image, PassContext, PassDecl, Read, RenderPass, Write
 pub const SHADER: &str = include_str!("../../../shaders/present.wgsl");
 
 /// The view shown and how (group 1), its texture read with `textureLoad`…
-pub const INPUTS: Group = Group::new("present inputs", &[Binding::texture("source"), Binding::uniform("params")]);
+pub const INPUTS: Group =
+    Group::new("present inputs", &[ShaderBinding::texture("source"), ShaderBinding::uniform("params")]);
 /// … or through the sampler's bilinear filter, where the format allows (`fs_upsample`).
-pub const FILTERED_INPUTS: Group =
-    Group::new("present inputs, filtered", &[Binding::filtered_texture("source"), Binding::uniform("params")]);
+pub const FILTERED_INPUTS: Group = Group::new(
+    "present inputs, filtered",
+    &[ShaderBinding::filtered_texture("source"), ShaderBinding::uniform("params")],
+);
 
 /// How a view's texture is turned into a picture.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

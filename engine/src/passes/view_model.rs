@@ -11,7 +11,7 @@
 
 use super::core_resources::{CoreResources, HDR_FORMAT};
 use super::gbuffer::{raster_pipeline, DEPTH_FORMAT};
-use crate::bindings::{Binding, Group};
+use crate::bindings::{Group, ShaderBinding};
 use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::gpu_instances::INSTANCE_LAYOUT;
@@ -24,9 +24,9 @@ pub const SHADER: &str = include_str!("../../../shaders/view_model.wgsl");
 pub const INPUTS: Group = Group::new(
     "view model inputs",
     &[
-        Binding::storage("ambient_cube"),
-        Binding::depth_texture("lamp_depth"),
-        Binding::comparison_sampler("lamp_shadow"),
+        ShaderBinding::storage("ambient_cube"),
+        ShaderBinding::depth_texture("lamp_depth"),
+        ShaderBinding::comparison_sampler("lamp_shadow"),
     ],
 );
 

@@ -6,7 +6,7 @@
 
 use std::collections::BTreeMap;
 
-use engine::bindings::{Declared, Kind};
+use engine::bindings::{BindingKind, WgslGroup};
 use engine::wgpu::TextureFormat;
 
 /// The files `source` includes, directly or through another include (`#include "name"`).
@@ -30,29 +30,29 @@ fn includes_of(source: &str, includes: &[(&str, &str)]) -> Vec<String> {
     found
 }
 
-/// What naga says a global is, in [`Kind`]'s words; `texture_2d<f32>` may be read either way.
-fn kinds_of(module: &naga::Module, var: &naga::GlobalVariable) -> Result<Vec<Kind>, String> {
+/// What naga says a global is, in [`BindingKind`]'s words; `texture_2d<f32>` may be read either way.
+fn kinds_of(module: &naga::Module, var: &naga::GlobalVariable) -> Result<Vec<BindingKind>, String> {
     use naga::{AddressSpace, ImageClass, ScalarKind, StorageAccess, TypeInner};
     match (var.space, &module.types[var.ty].inner) {
-        (AddressSpace::Uniform, _) => Ok(vec![Kind::Uniform]),
+        (AddressSpace::Uniform, _) => Ok(vec![BindingKind::Uniform]),
         (AddressSpace::Storage { access }, _) => {
-            Ok(vec![Kind::Storage { read_only: !access.contains(StorageAccess::STORE) }])
+            Ok(vec![BindingKind::Storage { read_only: !access.contains(StorageAccess::STORE) }])
         }
         (AddressSpace::Handle, TypeInner::Sampler { comparison }) => {
-            Ok(vec![if *comparison { Kind::ComparisonSampler } else { Kind::Sampler }])
+            Ok(vec![if *comparison { BindingKind::ComparisonSampler } else { BindingKind::Sampler }])
         }
         (AddressSpace::Handle, TypeInner::Image { dim: naga::ImageDimension::D2, arrayed: false, class }) => {
             match class {
                 ImageClass::Sampled { kind: ScalarKind::Float, multi: false } => {
-                    Ok(vec![Kind::Texture, Kind::FilteredTexture])
+                    Ok(vec![BindingKind::Texture, BindingKind::FilteredTexture])
                 }
-                ImageClass::Sampled { kind: ScalarKind::Uint, multi: false } => Ok(vec![Kind::UintTexture]),
-                ImageClass::Depth { multi: false } => Ok(vec![Kind::DepthTexture]),
-                ImageClass::Storage { format, .. } => Ok(vec![Kind::StorageTexture(texture_format(*format)?)]),
-                other => Err(format!("an image of class {other:?}, which no Kind describes")),
+                ImageClass::Sampled { kind: ScalarKind::Uint, multi: false } => Ok(vec![BindingKind::UintTexture]),
+                ImageClass::Depth { multi: false } => Ok(vec![BindingKind::DepthTexture]),
+                ImageClass::Storage { format, .. } => Ok(vec![BindingKind::StorageTexture(texture_format(*format)?)]),
+                other => Err(format!("an image of class {other:?}, which no BindingKind describes")),
             }
         }
-        (space, inner) => Err(format!("a {space:?} {inner:?}, which no Kind describes")),
+        (space, inner) => Err(format!("a {space:?} {inner:?}, which no BindingKind describes")),
     }
 }
 
@@ -69,10 +69,18 @@ fn texture_format(format: naga::StorageFormat) -> Result<TextureFormat, String> 
     })
 }
 
-/// Checks `shaders` (name, source as written) against `declared`: every `@group` of every
-/// shader is described by exactly one [`Declared`] (written for that shader, or for an include
-/// of it), and agrees with it. Returns the problems, each naming shader, group and binding.
-pub fn check(shaders: &[(&str, &str)], includes: &[(&str, &str)], declared: &[Declared]) -> Vec<String> {
+/// Checks `shaders` (name, source as written) against `declared`, their crate's groups, and
+/// `borrowed`, another crate's that they include: every `@group` of every shader is described
+/// by a [`WgslGroup`] (written for that shader, or for an include of it) and agrees with it;
+/// each of `declared` is declared somewhere and each of its bindings read. Returns the
+/// problems, each naming shader, group and binding.
+pub fn check(
+    shaders: &[(&str, &str)],
+    includes: &[(&str, &str)],
+    declared: &[WgslGroup],
+    borrowed: &[WgslGroup],
+) -> Vec<String> {
+    let all: Vec<WgslGroup> = declared.iter().chain(borrowed).copied().collect();
     let mut problems = Vec::new();
     // Per list (file, group, label), the bindings some entry point that uses the group reads.
     let mut read: BTreeMap<(&str, u32, &str), Vec<bool>> = BTreeMap::new();
@@ -103,12 +111,12 @@ pub fn check(shaders: &[(&str, &str)], includes: &[(&str, &str)], declared: &[De
         }
         for (group, mut vars) in groups {
             vars.sort();
-            let candidates: Vec<&Declared> = declared
+            let candidates: Vec<&WgslGroup> = all
                 .iter()
                 .filter(|d| d.group == group && (d.shader == *name || own.iter().any(|i| i == d.shader)))
                 .collect();
             if candidates.is_empty() {
-                problems.push(format!("{name}: @group({group}) is described by no Rust list (bindings::Declared)"));
+                problems.push(format!("{name}: @group({group}) is described by no Rust list (bindings::WgslGroup)"));
                 continue;
             }
             // Several lists may describe one group: layouts that differ only in how a texture
@@ -144,7 +152,7 @@ pub fn check(shaders: &[(&str, &str)], includes: &[(&str, &str)], declared: &[De
 fn check_group<'d>(
     name: &str,
     group: u32,
-    d: &'d Declared,
+    d: &'d WgslGroup,
     (module, info): (&naga::Module, &naga::valid::ModuleInfo),
     vars: &[(u32, naga::Handle<naga::GlobalVariable>)],
     read: &mut BTreeMap<(&'d str, u32, &'d str), Vec<bool>>,
@@ -173,15 +181,28 @@ fn check_group<'d>(
             Err(e) => problems.push(format!("{}: '{wgsl_name}' is {e}", at(i))),
         }
     }
+    // The entry points the layout serves: those listed, or every one that uses the group.
+    let serves =
+        |index: usize| d.entry_points.is_empty() || d.entry_points.contains(&module.entry_points[index].name.as_str());
+    let read_by_served = |handle: naga::Handle<naga::GlobalVariable>| {
+        (0..module.entry_points.len()).any(|i| serves(i) && !info.get_entry_point(i)[handle].is_empty())
+    };
+    for entry in d.entry_points {
+        if !module.entry_points.iter().any(|e| e.name == *entry) {
+            problems.push(format!("{name}: {} names entry point '{entry}', which it has not", d.layout.label));
+        }
+    }
     for (b, handle) in vars {
-        if *b as usize >= d.layout.bindings.len() {
+        // A layout for some entry points may stop short of bindings they leave unread.
+        let theirs = d.entry_points.is_empty() || read_by_served(*handle);
+        if *b as usize >= d.layout.bindings.len() && theirs {
             let wgsl_name = module.global_variables[*handle].name.as_deref().unwrap_or("");
             problems.push(format!("{}: '{wgsl_name}' is not in {}", at(*b as usize), d.layout.label));
         }
     }
     // The entry points that use the group at all, and what they read of it.
     let used = read.entry((d.shader, d.group, d.layout.label)).or_insert_with(|| vec![false; d.layout.bindings.len()]);
-    for (index, _) in module.entry_points.iter().enumerate() {
+    for index in (0..module.entry_points.len()).filter(|i| serves(*i)) {
         let function = info.get_entry_point(index);
         let uses: Vec<bool> = vars.iter().map(|(_, h)| !function[*h].is_empty()).collect();
         if !uses.iter().any(|u| *u) {

@@ -2,7 +2,7 @@
 //! over the frame's radiance after the light (stage PostProcess), before the view models.
 //! docs/architecture.md, "Writing a pass and a plugin", walks through it.
 
-use engine::bindings::{Binding, Group};
+use engine::bindings::{Group, ShaderBinding};
 use engine::graph::{Handle, Image, PassContext, PassDecl, Read, RenderPass, Stage, Write};
 use engine::passes::{color_pass, fullscreen_pipeline, HDR_FORMAT};
 use engine::plugin::{Plugin, PluginContext};
@@ -11,7 +11,8 @@ use engine::wgpu::{self, util::DeviceExt};
 pub const SHADER: &str = include_str!("depth_fog.wgsl");
 
 /// The fog and the G-buffer's positions (group 1 of depth_fog.wgsl), named as the WGSL names them.
-pub const INPUTS: Group = Group::new("depth fog", &[Binding::uniform("fog"), Binding::texture("gbuffer_position")]);
+pub const INPUTS: Group =
+    Group::new("depth fog", &[ShaderBinding::uniform("fog"), ShaderBinding::texture("gbuffer_position")]);
 
 /// The fog: its radiance (W·sr⁻¹·m⁻², linear RGB) and density (per metre).
 #[derive(Clone, Copy, Debug)]

@@ -5,17 +5,40 @@
 //! the GI off neither reads anything of the GI: the composite draws the engine's composite and
 //! the view is cleared.
 
+use engine::bindings::{Group, Resource, ShaderBinding as B, WgslGroup};
 use engine::globals::CoreLayouts;
 use engine::gpu::Gpu;
 use engine::graph::{Buffer, Handle, Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
 use engine::passes::{color_pass, procedural_pipeline, CompositePass, CoreResources, HDR_FORMAT};
 use engine::wgpu;
 
-use crate::bindings::{bind, layout, Resource as R, Slot as S};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/indirect.wgsl");
+
+/// The frame's upsampling, `fs_frame` (group 1 of indirect.wgsl): the irradiance and the
+/// G-buffer, and the direct and emitted light the indirect light is added to.
+pub const FRAME: Group = Group::new(
+    "gi composite",
+    &[
+        B::uniform("params"),
+        B::texture("irradiance"),
+        B::texture("gbuffer_albedo"),
+        B::texture("gbuffer_normal"),
+        B::texture("gbuffer_position"),
+        B::texture("direct_radiance"),
+        B::texture("gbuffer_emissive"),
+    ],
+);
+/// The indirect light alone, `fs_indirect`: the same group less the frame's light.
+pub const INDIRECT_ONLY: Group = Group::new("gi indirect view", FRAME.bindings.split_at(5).0);
+
+/// Where the upsampling's groups are declared.
+pub const BINDINGS: &[WgslGroup] = &[
+    WgslGroup::new("gi/indirect.wgsl", 1, &FRAME).for_entry_points(&["vs_main", "fs_frame"]),
+    WgslGroup::new("gi/indirect.wgsl", 1, &INDIRECT_ONLY).for_entry_points(&["vs_main", "fs_indirect"]),
+];
 
 /// What an upsampling draw writes: the frame's radiance with the indirect light in it, or the
 /// indirect light alone.
@@ -23,6 +46,15 @@ pub const SHADER: &str = include_str!("../../../shaders/gi/indirect.wgsl");
 enum Output {
     Frame,
     IndirectOnly,
+}
+
+impl Output {
+    fn group(self) -> Group {
+        match self {
+            Output::Frame => FRAME,
+            Output::IndirectOnly => INDIRECT_ONLY,
+        }
+    }
 }
 
 /// The upsampling draw, into one target.
@@ -51,13 +83,11 @@ impl Upsample {
         label: &str,
         output: Output,
     ) -> Self {
-        let (slots, fragment): (&[S], _) = match output {
-            Output::Frame => {
-                (&[S::Uniform, S::Texture, S::Texture, S::Texture, S::Texture, S::Texture, S::Texture], "fs_frame")
-            }
-            Output::IndirectOnly => (&[S::Uniform, S::Texture, S::Texture, S::Texture, S::Texture], "fs_indirect"),
+        let layout = output.group().layout(device);
+        let fragment = match output {
+            Output::Frame => "fs_frame",
+            Output::IndirectOnly => "fs_indirect",
         };
-        let layout = layout(device, label, slots);
         let module = crate::shader::module(device, label, SHADER);
         let targets =
             [Some(wgpu::ColorTargetState { format: HDR_FORMAT, blend: None, write_mask: wgpu::ColorWrites::ALL })];
@@ -88,15 +118,20 @@ impl Upsample {
 
     fn draw(&self, ctx: &mut PassContext<'_>, label: &str, inputs: &UpsampleInputs, target: &Write<Image>) {
         let [irradiance, albedo, normal, position] = &inputs.textures;
-        let mut resources = vec![
-            R::Buffer(ctx.buffer(&inputs.params)),
-            R::View(ctx.view(irradiance)),
-            R::View(ctx.view(albedo)),
-            R::View(ctx.view(normal)),
-            R::View(ctx.view(position)),
+        let mut resources: Vec<(&str, Resource<'_>)> = vec![
+            ("params", ctx.buffer(&inputs.params).into()),
+            ("irradiance", ctx.view(irradiance).into()),
+            ("gbuffer_albedo", ctx.view(albedo).into()),
+            ("gbuffer_normal", ctx.view(normal).into()),
+            ("gbuffer_position", ctx.view(position).into()),
         ];
-        resources.extend(inputs.frame.iter().flatten().map(|t| R::View(ctx.view(t))));
-        let group = bind(&ctx.gpu.device, &self.layout, &resources);
+        if let Some([direct, emissive]) = &inputs.frame {
+            resources.extend([
+                ("direct_radiance", ctx.view(direct).into()),
+                ("gbuffer_emissive", ctx.view(emissive).into()),
+            ]);
+        }
+        let group = self.output.group().bind(&ctx.gpu.device, &self.layout, &resources);
         let mut pass = color_pass(ctx.encoder, label, ctx.view(target), false);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, ctx.frame.globals, &[]);

@@ -1,14 +1,20 @@
 //! The `lights` view: the frame, dimmed, with a dot per reflection light coloured by its level.
 
+use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::graph::{Buffer, Handle, Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
 use engine::passes::{color_pass, procedural_pipeline};
 use engine::wgpu;
 
-use crate::bindings::{bind, layout, Resource as R, Slot as S};
 use crate::resources::GiResources;
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/lights_view.wgsl");
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+
+/// The lights view's group 1 (lights_view.wgsl): the centre tile's lights and the frame.
+pub const LIGHTS_VIEW: Group = Group::new("gi lights view", &[B::storage("reflection_lights"), B::texture("frame")]);
+
+/// Where its group is declared.
+pub const BINDINGS: &[WgslGroup] = &[WgslGroup::new("gi/lights_view.wgsl", 1, &LIGHTS_VIEW)];
 
 pub struct LightsViewPass {
     layout: wgpu::BindGroupLayout,
@@ -32,7 +38,7 @@ impl LightsViewPass {
         gi: GiResources,
         hdr: Handle<Image>,
     ) -> Self {
-        let layout = layout(device, "gi lights view", &[S::Storage { read_only: true }, S::Texture]);
+        let layout = LIGHTS_VIEW.layout(device);
         let module = crate::shader::module(device, "gi lights view", SHADER);
         let (layouts, targets) = ([Some(globals), Some(&layout)], [Some(FORMAT.into())]);
         let pipeline = |vs, fs| {
@@ -59,8 +65,11 @@ impl RenderPass for LightsViewPass {
     }
 
     fn run(&mut self, io: &LightsViewIo, ctx: &mut PassContext<'_>) {
-        let group =
-            bind(&ctx.gpu.device, &self.layout, &[R::Buffer(ctx.buffer(&io.lights)), R::View(ctx.view(&io.hdr))]);
+        let group = LIGHTS_VIEW.bind(
+            &ctx.gpu.device,
+            &self.layout,
+            &[("reflection_lights", ctx.buffer(&io.lights).into()), ("frame", ctx.view(&io.hdr).into())],
+        );
         // The stats begin with the draw arguments of the centre tile's lights.
         let args = ctx.buffer(&io.stats);
         let mut pass = color_pass(ctx.encoder, "gi lights view", ctx.view(&io.target), false);

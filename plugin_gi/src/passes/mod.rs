@@ -41,3 +41,20 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("gi/temporal.wgsl", temporal::SHADER),
     ("gi/view_model_irradiance.wgsl", view_model_irradiance::SHADER),
 ];
+
+/// Every bind group the GI's WGSL declares, with the list its layout is made from
+/// (plugin_gi/tests/bindings.rs reflects the WGSL against these).
+pub fn bindings() -> Vec<engine::bindings::WgslGroup> {
+    [
+        crate::pyramid::BINDINGS,
+        crate::gather::BINDINGS,
+        crate::sight_depth::BINDINGS,
+        crate::light_volumes::BINDINGS,
+        indirect::BINDINGS,
+        lights_view::BINDINGS,
+        reference::BINDINGS,
+        temporal::BINDINGS,
+        view_model_irradiance::BINDINGS,
+    ]
+    .concat()
+}

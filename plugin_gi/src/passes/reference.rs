@@ -1,17 +1,39 @@
 //! The exact one bounce: every flux texel a sender, as the small patch it is, with no merging,
 //! no cutoff and no clamp (the `reference` view). Culled by the graph unless something shows or reads it.
 
+use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, RenderPass, SizeRule, TextureDesc, Write};
 use engine::passes::CoreResources;
 use engine::wgpu;
 
 use super::params::{lamp_view, lamp_view_size};
-use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
 use crate::gpu_types::SenderRange;
+use crate::pipelines::{compute_pipeline, uniform_buffer};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/reference.wgsl");
+
+/// The reference's group 1 (reference.wgsl): the senders (the lamp's view), the receivers (the
+/// camera's G-buffer), the output, a dispatch's range of senders and the running sums.
+pub const REFERENCE: Group = Group::new(
+    "gi reference",
+    &[
+        B::uniform("params"),
+        B::texture("light_albedo"),
+        B::texture("light_position"),
+        B::texture("light_normal"),
+        B::texture("gbuffer_albedo"),
+        B::texture("gbuffer_normal"),
+        B::texture("gbuffer_position"),
+        B::storage_texture("reference_out", wgpu::TextureFormat::Rgba32Float),
+        B::uniform("range"),
+        B::storage_rw("sums"),
+    ],
+);
+
+/// Where its group is declared.
+pub const BINDINGS: &[WgslGroup] = &[WgslGroup::new("gi/reference.wgsl", 1, &REFERENCE)];
 
 /// Senders per dispatch: with the 64-sender tiles, 16,640 loop iterations, well inside the
 /// 65,535 that llvmpipe allows a loop nest.
@@ -39,11 +61,7 @@ impl ReferencePass {
         core: CoreResources,
         gi: GiResources,
     ) -> Self {
-        let mut slots = vec![S::Uniform];
-        slots.extend([S::Texture; 6]);
-        slots.push(S::StorageTexture(wgpu::TextureFormat::Rgba32Float));
-        slots.extend([S::Uniform, S::Storage { read_only: false }]);
-        let layout = layout(device, "gi reference", &slots);
+        let layout = REFERENCE.layout(device);
         let module = crate::shader::module(device, "gi reference", SHADER);
         let pipeline = compute_pipeline(device, "gi reference", &module, "main", &[Some(globals), Some(&layout)]);
         Self { handle, core, gi, layout, pipeline, ranges: Vec::new(), sums: None }
@@ -53,7 +71,7 @@ impl ReferencePass {
 pub struct ReferenceIo {
     params: Read<Buffer>,
     /// The lamp view's albedo, position and normal (the senders), then the camera's (the
-    /// receivers): bindings 1–6.
+    /// receivers).
     textures: [Read<Image>; 6],
     target: Write<Image>,
     /// The lamp view's size: one sender a texel.
@@ -117,20 +135,20 @@ impl RenderPass for ReferencePass {
             };
             let uniform = &self.ranges[chunk as usize];
             ctx.gpu.queue.write_buffer(uniform, 0, bytemuck::bytes_of(&range));
-            let group = bind(
+            let group = REFERENCE.bind(
                 device,
                 &self.layout,
                 &[
-                    R::Buffer(ctx.buffer(&io.params)),
-                    R::View(ctx.view(lamp_albedo)),
-                    R::View(ctx.view(lamp_position)),
-                    R::View(ctx.view(lamp_normal)),
-                    R::View(ctx.view(albedo)),
-                    R::View(ctx.view(normal)),
-                    R::View(ctx.view(position)),
-                    R::View(ctx.view(&io.target)),
-                    R::Buffer(uniform),
-                    R::Buffer(sums),
+                    ("params", ctx.buffer(&io.params).into()),
+                    ("light_albedo", ctx.view(lamp_albedo).into()),
+                    ("light_position", ctx.view(lamp_position).into()),
+                    ("light_normal", ctx.view(lamp_normal).into()),
+                    ("gbuffer_albedo", ctx.view(albedo).into()),
+                    ("gbuffer_normal", ctx.view(normal).into()),
+                    ("gbuffer_position", ctx.view(position).into()),
+                    ("reference_out", ctx.view(&io.target).into()),
+                    ("range", uniform.into()),
+                    ("sums", sums.into()),
                 ],
             );
             let mut pass = ctx.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

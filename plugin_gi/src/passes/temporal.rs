@@ -5,6 +5,7 @@
 
 use std::cell::Cell;
 
+use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::glam::{Mat4, Vec3};
 use engine::graph::{Buffer, History, Image, PassContext, PassDecl, Read, RenderPass, Write};
 use engine::headlamp::LampFrustum;
@@ -14,13 +15,30 @@ use engine::wgpu;
 
 use super::gather::{irradiance_texture, IRRADIANCE_FORMAT};
 use super::params::indirect_size;
-use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S, TEXEL_GROUP};
 use crate::gpu_types::TemporalParams;
 use crate::grids::Grids;
+use crate::pipelines::{compute_pipeline, uniform_buffer, TEXEL_GROUP};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/temporal.wgsl");
+
+/// The blend's group 1 (temporal.wgsl).
+pub const TEMPORAL: Group = Group::new(
+    "gi temporal",
+    &[
+        B::uniform("params"),
+        B::uniform("temporal"),
+        B::texture("current"),
+        B::texture("history"),
+        B::texture("gbuffer_position"),
+        B::storage_texture("blended", IRRADIANCE_FORMAT),
+        B::storage("receiver_texels"),
+    ],
+);
+
+/// Where its group is declared.
+pub const BINDINGS: &[WgslGroup] = &[WgslGroup::new("gi/temporal.wgsl", 1, &TEMPORAL)];
 
 /// How far history may lie outside the range of this frame's 3×3 neighbourhood on its surface,
 /// relative, before it is pulled in: wide enough for the gather's own frame-to-frame wobble,
@@ -89,16 +107,7 @@ impl TemporalPass {
         core: CoreResources,
         gi: GiResources,
     ) -> Self {
-        let slots = [
-            S::Uniform,
-            S::Uniform,
-            S::Texture,
-            S::Texture,
-            S::Texture,
-            S::StorageTexture(IRRADIANCE_FORMAT),
-            S::Storage { read_only: true },
-        ];
-        let layout = layout(device, "gi temporal", &slots);
+        let layout = TEMPORAL.layout(device);
         let module = crate::shader::module(device, "gi temporal", SHADER);
         let pipeline = compute_pipeline(device, "gi temporal", &module, "main", &[Some(globals), Some(&layout)]);
         let uniform = uniform_buffer(device, "gi temporal params", std::mem::size_of::<TemporalParams>() as u64);
@@ -166,17 +175,17 @@ impl RenderPass for TemporalPass {
         };
         ctx.gpu.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&value));
         self.previous = Some((view_proj, lamp, emission, offset));
-        let group = bind(
+        let group = TEMPORAL.bind(
             &ctx.gpu.device,
             &self.layout,
             &[
-                R::Buffer(ctx.buffer(&io.params)),
-                R::Buffer(&self.uniform),
-                R::View(ctx.view(&io.current)),
-                R::View(ctx.view(&io.previous)),
-                R::View(ctx.view(&io.position)),
-                R::View(ctx.view(&io.blended)),
-                R::Buffer(ctx.buffer(&io.receivers)),
+                ("params", ctx.buffer(&io.params).into()),
+                ("temporal", (&self.uniform).into()),
+                ("current", ctx.view(&io.current).into()),
+                ("history", ctx.view(&io.previous).into()),
+                ("gbuffer_position", ctx.view(&io.position).into()),
+                ("blended", ctx.view(&io.blended).into()),
+                ("receiver_texels", ctx.buffer(&io.receivers).into()),
             ],
         );
         let mut pass = ctx

@@ -4,17 +4,27 @@
 //! `view_model.irradiance` (shaders/gi/view_model_irradiance.wgsl). Nothing is recorded without
 //! view models; the cube then stays as the engine cleared it.
 
+use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::graph::{Buffer, Handle, PassContext, PassDecl, Read, RenderPass, Write};
 use engine::wgpu;
 
 use super::params::flux_size;
-use crate::bindings::{bind, compute_pipeline, layout, uniform_buffer, Resource as R, Slot as S};
 use crate::gpu_types::Probe;
+use crate::pipelines::{compute_pipeline, uniform_buffer};
 use crate::quadtree::{Quadtree, LEVELS};
 use crate::resources::GiResources;
 use crate::shared::GiHandle;
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/view_model_irradiance.wgsl");
+
+/// The probe's group 1 (view_model_irradiance.wgsl): where it is, the pyramid, the cube out.
+pub const PROBE: Group = Group::new(
+    "gi view model irradiance",
+    &[B::uniform("probe"), B::uniform("levels"), B::storage("nodes"), B::storage_rw("ambient_cube")],
+);
+
+/// Where its group is declared.
+pub const BINDINGS: &[WgslGroup] = &[WgslGroup::new("gi/view_model_irradiance.wgsl", 1, &PROBE)];
 
 /// The finest pyramid level with at most this many nodes is summed: fine enough that nodes
 /// stay small against their distance to the probe, cheap enough for one workgroup.
@@ -45,11 +55,7 @@ impl ViewModelIrradiancePass {
         gi: GiResources,
         irradiance: Handle<Buffer>,
     ) -> Self {
-        let layout = layout(
-            device,
-            "gi view model irradiance",
-            &[S::Uniform, S::Uniform, S::Storage { read_only: true }, S::Storage { read_only: false }],
-        );
+        let layout = PROBE.layout(device);
         let module = crate::shader::module(device, "gi view model irradiance", SHADER);
         let pipeline =
             compute_pipeline(device, "gi view model irradiance", &module, "main", &[Some(globals), Some(&layout)]);
@@ -88,14 +94,14 @@ impl RenderPass for ViewModelIrradiancePass {
             .unwrap_or(LEVELS - 1);
         let probe = Probe { position: [point.x, point.y, point.z, 0.0], level: [level, 0, 0, 0] };
         ctx.gpu.queue.write_buffer(&self.probe, 0, bytemuck::bytes_of(&probe));
-        let group = bind(
+        let group = PROBE.bind(
             &ctx.gpu.device,
             &self.layout,
             &[
-                R::Buffer(&self.probe),
-                R::Buffer(ctx.buffer(&io.levels)),
-                R::Buffer(ctx.buffer(&io.nodes)),
-                R::Buffer(ctx.buffer(&io.irradiance)),
+                ("probe", (&self.probe).into()),
+                ("levels", ctx.buffer(&io.levels).into()),
+                ("nodes", ctx.buffer(&io.nodes).into()),
+                ("ambient_cube", ctx.buffer(&io.irradiance).into()),
             ],
         );
         let mut pass = ctx.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
