@@ -10,6 +10,7 @@
 //! It depends on the engine's public API only and registers everything in [`GiPlugin::build`].
 
 pub mod distribution_table;
+mod frame;
 mod gather;
 pub mod gpu_types;
 mod grids;

@@ -6,6 +6,7 @@ use std::rc::Rc;
 
 use engine::renderer::Renderer;
 
+use crate::frame::GiFrame;
 use crate::settings::GiSettings;
 
 /// Per-frame figures of the GI. Draws and dispatches depend on the number of bounces, never on
@@ -33,6 +34,8 @@ pub struct GiHandle(Rc<RefCell<Shared>>);
 #[derive(Default)]
 struct Shared {
     settings: GiSettings,
+    /// The last frame description made, for the settings as they were then.
+    frame: Option<GiFrame>,
     /// See [`GiHandle::set_reference_stride`]; 0 stands for 1.
     reference_stride: u32,
 }
@@ -43,6 +46,17 @@ impl GiHandle {
     }
     pub fn set_settings(&self, settings: GiSettings) {
         self.0.borrow_mut().settings = settings;
+    }
+
+    /// The frame as the GI's passes see it, for a frame of `size` with the lamp `attached`:
+    /// made once for each frame size, lamp and settings, and read by every pass.
+    pub(crate) fn frame(&self, size: (u32, u32), attached: bool) -> GiFrame {
+        let mut shared = self.0.borrow_mut();
+        let Shared { settings, frame, .. } = &mut *shared;
+        match frame {
+            Some(f) if f.size == size && f.attached == attached && f.settings == *settings => f.clone(),
+            _ => frame.insert(GiFrame::of(settings, size, attached)).clone(),
+        }
     }
 
     /// For tools that check the `reference` view against finer senders: it then evaluates only

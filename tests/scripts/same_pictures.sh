@@ -6,6 +6,7 @@
 #
 #   tests/scripts/same_pictures.sh OLD_HEADLAMP NEW_HEADLAMP [SIZE]    (SIZE default 320x180)
 #
+# The GPU reference (reference_screen) costs the square of the pixels: keep SIZE small.
 # Build the old one from the commit before (`git worktree add`, `cargo build --release`, copy
 # target/release/headlamp). Exit status 1 when any picture differs.
 set -euo pipefail

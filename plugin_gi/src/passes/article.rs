@@ -8,7 +8,6 @@ use engine::passes::CoreResources;
 use engine::wgpu;
 
 use super::gather::{irradiance_texture, lights_desc, sink, stats_desc};
-use super::params::{finest_level, flux_size, halvings, indirect_size, lamp_view_size};
 use crate::gather::receivers_desc;
 use crate::light_volumes::{LightVolumes, TableFrame, TableKey, VolumeTargets};
 use crate::resources::GiResources;
@@ -68,11 +67,11 @@ impl RenderPass for ArticlePass {
     }
 
     fn declare(&self, d: &mut PassDecl<'_>) -> Option<ArticleIo> {
-        let settings = self.handle.settings();
-        if settings.method != Method::Article {
+        let frame = self.handle.frame(d.size(), d.view().headlamp.attached);
+        if frame.settings.method != Method::Article {
             return None;
         }
-        let indirect = indirect_size(&settings, d.size());
+        let indirect = frame.indirect;
         let gi = &self.gi;
         Some(ArticleIo {
             params: d.read(gi.params),
@@ -84,20 +83,20 @@ impl RenderPass for ArticlePass {
             stats: d.create(gi.stats, stats_desc()),
             lights: d.create(gi.lights, lights_desc()),
             receivers: d.create(gi.receivers, receivers_desc(indirect)),
-            sight_depth: sight_depth::declare(d, gi.sight_depth, settings.visibility == 1),
+            sight_depth: sight_depth::declare(d, gi.sight_depth, frame.visibility()),
             indirect,
         })
     }
 
     fn run(&mut self, io: &Option<ArticleIo>, ctx: &mut PassContext<'_>) {
         let Some(io) = io else { return };
-        let settings = self.handle.settings();
-        let (size, attached) = (ctx.frame.size, ctx.frame.view.headlamp.attached);
+        let gi = self.handle.frame(ctx.frame.size, ctx.frame.view.headlamp.attached);
+        let (settings, lamp) = (&gi.settings, gi.lamp);
         let frame = TableFrame {
-            base: flux_size(&settings, size, attached),
-            view: lamp_view_size(size, attached),
-            block: 1 << halvings(&settings, size, attached),
-            floor: finest_level(&settings, size, attached),
+            base: lamp.flux,
+            view: lamp.view,
+            block: lamp.block(),
+            floor: lamp.finest_level,
             budget: settings.light_budget,
             fov_y: ctx.frame.lamp.fov_y,
             aspect: ctx.frame.lamp.aspect,

@@ -8,8 +8,8 @@ use engine::wgpu;
 
 use super::flux::flux_texture;
 use super::gather::{irradiance_texture, lights_desc, stats_desc};
-use super::params::{flux_blocks, flux_size, indirect_size, params, params_desc};
-use crate::gather::{cuts_layout, CutsLayout, Gather, GatherTargets, SumLanes};
+use super::params::{params, params_desc};
+use crate::gather::{CutsLayout, Gather, GatherTargets, SumLanes};
 use crate::pyramid::{nodes_desc, FluxSource, PyramidBindings, PyramidPipelines};
 use crate::resources::GiResources;
 use crate::settings::Method;
@@ -67,18 +67,18 @@ impl RenderPass for BouncePass {
     }
 
     fn declare(&self, d: &mut PassDecl<'_>) -> Option<BounceIo> {
-        let s = self.handle.settings();
+        let frame = self.handle.frame(d.size(), d.view().headlamp.attached);
         // (The article's method is its one bounce: see docs/gi.md.)
-        if !(s.enabled && s.bounces >= 2 && d.view().headlamp.attached && s.method == Method::Cuts) {
+        if !(frame.runs(Method::Cuts) && frame.further_bounces() > 0 && frame.attached) {
             return None;
         }
-        let (flux, low) = (flux_size(&s, d.size(), true), indirect_size(&s, d.size()));
+        let (flux, low) = (frame.bounce.flux, frame.indirect);
         let (g, b) = (&self.core.gbuffer, &self.gi.bounce);
         Some(BounceIo {
             gbuffer: [g.albedo, g.normal, g.position].map(|h| d.read(h)),
             levels: d.read(self.gi.levels),
             params: d.create(b.params, params_desc()),
-            nodes: d.create(b.nodes, nodes_desc(flux, flux_blocks(&s, d.size(), true))),
+            nodes: d.create(b.nodes, nodes_desc(flux, frame.bounce.blocks())),
             flux: d.create(b.flux, flux_texture(engine::wgpu::TextureFormat::Rgba32Float, flux)),
             // The flux view is of the lamp's light only.
             flux_view: d.create(b.flux_view, flux_texture(engine::wgpu::TextureFormat::Rgba16Float, (1, 1))),
@@ -89,17 +89,17 @@ impl RenderPass for BouncePass {
             cuts: d.write(self.gi.cuts),
             receivers: d.write(self.gi.receivers),
             irradiance: d.write(self.gi.irradiance),
-            layout: cuts_layout(low, flux),
+            layout: frame.bounce_cuts,
             flux_size: flux,
             indirect_size: low,
-            sight_depth: (s.visibility == 1).then(|| d.read(self.gi.sight_depth)),
+            sight_depth: frame.visibility().then(|| d.read(self.gi.sight_depth)),
         })
     }
 
     fn run(&mut self, io: &Option<BounceIo>, ctx: &mut PassContext<'_>) {
         let Some(io) = io else { return };
-        let settings = self.handle.settings();
-        let values = params(&settings, ctx, FluxSource::Bounce);
+        let frame = self.handle.frame(ctx.frame.size, ctx.frame.view.headlamp.attached);
+        let values = params(&frame, ctx, FluxSource::Bounce);
         ctx.write_buffer(&io.params, 0, bytemuck::bytes_of(&values));
         let device = &ctx.gpu.device;
         let low = io.indirect_size;
@@ -109,7 +109,7 @@ impl RenderPass for BouncePass {
         ctx.encoder.copy_texture_to_texture(total.as_image_copy(), ctx.texture(first).as_image_copy(), extent);
         let [albedo, normal, position] = &io.gbuffer;
         let mut dispatches = 0;
-        for bounce in 2..=settings.bounces {
+        for bounce in 2..=frame.settings.bounces {
             let (src, dst) = if bounce % 2 == 0 { (first, second) } else { (second, first) };
             let bindings = PyramidBindings {
                 params: ctx.buffer(&io.params),

@@ -4,7 +4,7 @@ use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, RenderPass, Text
 use engine::passes::CoreResources;
 use engine::wgpu;
 
-use super::params::{fixed, flux_blocks, flux_size, flux_view_size, lamp_view};
+use super::params::{fixed, lamp_view};
 use crate::gpu_types::Levels;
 use crate::pyramid::{levels_desc, nodes_desc, FluxSource, PyramidBindings, PyramidPipelines};
 use crate::quadtree::Quadtree;
@@ -59,19 +59,13 @@ impl RenderPass for FluxPass {
     fn declare(&self, d: &mut PassDecl<'_>) -> FluxIo {
         let attached = d.view().headlamp.attached;
         let lamp = lamp_view(&self.core.gbuffer, &self.core.lamp, attached);
-        let size = flux_size(&self.settings.settings(), d.size(), attached);
-        let blocks = flux_blocks(&self.settings.settings(), d.size(), attached);
+        let senders = self.settings.frame(d.size(), attached).lamp;
+        let (size, blocks) = (senders.flux, senders.blocks());
         FluxIo {
             params: d.read(self.gi.params),
             lamp: [lamp.albedo, lamp.normal, lamp.position].map(|h| d.read(h)),
             flux: d.create(self.gi.flux, flux_texture(wgpu::TextureFormat::Rgba32Float, size)),
-            flux_view: d.create(
-                self.gi.flux_view,
-                flux_texture(
-                    wgpu::TextureFormat::Rgba16Float,
-                    flux_view_size(&self.settings.settings(), d.size(), attached),
-                ),
-            ),
+            flux_view: d.create(self.gi.flux_view, flux_texture(wgpu::TextureFormat::Rgba16Float, senders.flux_view)),
             levels: d.create(self.gi.levels, levels_desc()),
             nodes: d.create(self.gi.nodes, nodes_desc(size, blocks)),
             size,

@@ -4,8 +4,8 @@ use engine::graph::{Buffer, BufferDesc, Image, PassContext, PassDecl, Read, Rend
 use engine::passes::CoreResources;
 use engine::wgpu;
 
-use super::params::{fixed, flux_size, indirect_size};
-use crate::gather::{cuts_desc, cuts_layout, receivers_desc, CutsLayout, Gather, GatherTargets, SumLanes};
+use super::params::fixed;
+use crate::gather::{cuts_desc, receivers_desc, CutsLayout, Gather, GatherTargets, SumLanes};
 use crate::gpu_types::{CENTRE_LIGHTS, GATHER_STATS_SIZE};
 use crate::resources::GiResources;
 use crate::settings::Method;
@@ -109,12 +109,11 @@ impl RenderPass for GatherPass {
     }
 
     fn declare(&self, d: &mut PassDecl<'_>) -> Option<GatherIo> {
-        let settings = self.handle.settings();
-        if settings.method != Method::Cuts {
+        let frame = self.handle.frame(d.size(), d.view().headlamp.attached);
+        if frame.settings.method != Method::Cuts {
             return None;
         }
-        let size = indirect_size(&settings, d.size());
-        let layout = cuts_layout(size, flux_size(&settings, d.size(), d.view().headlamp.attached));
+        let (size, layout) = (frame.indirect, frame.cuts);
         let gi = &self.gi;
         Some(GatherIo {
             params: d.read(gi.params),
@@ -127,7 +126,7 @@ impl RenderPass for GatherPass {
             stats: d.create(gi.stats, stats_desc()),
             lights: d.create(gi.lights, lights_desc()),
             receivers: d.create(gi.receivers, receivers_desc(size)),
-            sight_depth: sight_depth::declare(d, gi.sight_depth, settings.visibility == 1),
+            sight_depth: sight_depth::declare(d, gi.sight_depth, frame.visibility()),
             layout,
         })
     }

@@ -105,7 +105,7 @@ impl Upsample {
 
     /// The inputs, or None with the GI off.
     fn declare_inputs(&self, d: &mut PassDecl<'_>) -> Option<UpsampleInputs> {
-        if !self.handle.settings().enabled {
+        if !self.handle.frame(d.size(), d.view().headlamp.attached).enabled() {
             return None;
         }
         let g = &self.core.gbuffer;

@@ -1,5 +1,5 @@
-//! The GI's render-graph passes, in frame order. Each WGSL file is named after the Rust module
-//! that loads it (shaders/gi/NAME.wgsl ↔ NAME.rs here or in the crate's root).
+//! The GI's render-graph passes, in frame order. docs/architecture.md's table of the GI's
+//! stages gives each pass its Rust modules, its WGSL files (shaders/gi/) and its tests.
 
 mod article;
 mod bounces;

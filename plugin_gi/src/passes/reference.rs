@@ -6,7 +6,7 @@ use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, RenderPass, Size
 use engine::passes::CoreResources;
 use engine::wgpu;
 
-use super::params::{lamp_view, lamp_view_size};
+use super::params::lamp_view;
 use crate::gpu_types::SenderRange;
 use crate::pipelines::{compute_pipeline, uniform_buffer};
 use crate::resources::GiResources;
@@ -100,7 +100,7 @@ impl RenderPass for ReferencePass {
             params: d.read(self.gi.params),
             textures: [lamp.albedo, lamp.position, lamp.normal, g.albedo, g.normal, g.position].map(|h| d.read(h)),
             target: d.create(self.gi.reference, desc),
-            senders: lamp_view_size(d.size(), attached),
+            senders: self.handle.frame(d.size(), attached).lamp.view,
         }
     }
 

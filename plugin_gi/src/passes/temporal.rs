@@ -14,7 +14,6 @@ use engine::view_state::ViewState;
 use engine::wgpu;
 
 use super::gather::{irradiance_texture, IRRADIANCE_FORMAT};
-use super::params::indirect_size;
 use crate::gpu_types::TemporalParams;
 use crate::grids::Grids;
 use crate::pipelines::{compute_pipeline, uniform_buffer, TEXEL_GROUP};
@@ -135,12 +134,12 @@ impl RenderPass for TemporalPass {
     }
 
     fn declare(&self, d: &mut PassDecl<'_>) -> Option<TemporalIo> {
-        let settings = self.handle.settings();
-        if !settings.enabled {
+        let frame = self.handle.frame(d.size(), d.view().headlamp.attached);
+        if !frame.enabled() {
             self.skipped.set(true);
             return None;
         }
-        let size = indirect_size(&settings, d.size());
+        let size = frame.indirect;
         Some(TemporalIo {
             params: d.read(self.params),
             current: d.read(self.irradiance),
@@ -167,7 +166,7 @@ impl RenderPass for TemporalPass {
         let steadiness = previous.map_or(0.0, |(_, before, ..)| lamp_steadiness(&before, &lamp));
         // (The receivers' grid alone: where this frame's samples lie, for the next frame.)
         let offset = Grids::of(&ctx.frame.view.camera, ctx.frame.size, io.size, 1).receiver_offset;
-        let history = self.handle.settings().history * steadiness;
+        let history = self.handle.frame(ctx.frame.size, ctx.frame.view.headlamp.attached).settings.history * steadiness;
         let value = TemporalParams {
             previous_view_proj: previous.map_or(view_proj, |(m, ..)| m).to_cols_array_2d(),
             blend: [1.0 - history, if history > 0.0 { 1.0 } else { 0.0 }, HISTORY_SLACK, 0.0],

@@ -8,7 +8,6 @@ use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::graph::{Buffer, Handle, PassContext, PassDecl, Read, RenderPass, Write};
 use engine::wgpu;
 
-use super::params::flux_size;
 use crate::gpu_types::Probe;
 use crate::pipelines::{compute_pipeline, uniform_buffer};
 use crate::quadtree::{Quadtree, LEVELS};
@@ -72,12 +71,12 @@ impl RenderPass for ViewModelIrradiancePass {
     }
 
     fn declare(&self, d: &mut PassDecl<'_>) -> Option<ViewModelIrradianceIo> {
-        let settings = self.handle.settings();
-        settings.enabled.then(|| ViewModelIrradianceIo {
+        let frame = self.handle.frame(d.size(), d.view().headlamp.attached);
+        frame.enabled().then(|| ViewModelIrradianceIo {
             levels: d.read(self.gi.levels),
             nodes: d.read(self.gi.nodes),
             irradiance: d.write(self.irradiance),
-            flux_size: flux_size(&settings, d.size(), d.view().headlamp.attached),
+            flux_size: frame.lamp.flux,
         })
     }
 
