@@ -428,3 +428,24 @@ fn the_readme_is_a_tour() {
     let lines = std::fs::read_to_string(root().join("README.md")).unwrap().lines().count();
     assert!(lines <= 150, "README.md has {lines} lines: it is a tour of 150 at most, the depth is docs/'s");
 }
+
+/// docs/architecture.md's table of the GI's stages names every GI shader and pass module, so a
+/// stage's Rust, WGSL and tests are one search away.
+#[test]
+fn the_gi_stage_table_names_every_gi_shader_and_pass() {
+    let root = root();
+    let docs = std::fs::read_to_string(root.join("docs/architecture.md")).unwrap();
+    let start = docs.find("## The GI's stages").expect("docs/architecture.md has a section \"The GI's stages\"");
+    let section = &docs[start..];
+    let section = &section[..section[3..].find("\n## ").map_or(section.len(), |i| i + 3)];
+    let mut missing = Vec::new();
+    for (dir, ext) in [("shaders/gi", "wgsl"), ("plugin_gi/src/passes", "rs")] {
+        for entry in std::fs::read_dir(root.join(dir)).unwrap() {
+            let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+            if name.ends_with(ext) && name != "mod.rs" && !section.contains(&name) {
+                missing.push(format!("{dir}/{name}"));
+            }
+        }
+    }
+    assert!(missing.is_empty(), "docs/architecture.md's table of the GI's stages does not name: {missing:?}");
+}
