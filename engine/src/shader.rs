@@ -18,6 +18,14 @@ pub fn compose(source: &str, extra: &[(&str, &str)]) -> String {
     out
 }
 
+/// The names of the files `source` includes, directly or through another include, as
+/// [`compose`] expands them.
+pub fn included<'a>(source: &'a str, extra: &[(&'a str, &'a str)]) -> Vec<&'a str> {
+    let mut included = Vec::new();
+    expand(source, extra, &mut included, &mut String::new());
+    included
+}
+
 fn expand<'a>(source: &'a str, extra: &[(&'a str, &'a str)], included: &mut Vec<&'a str>, out: &mut String) {
     for line in source.lines() {
         let Some(rest) = line.trim().strip_prefix("#include") else {
@@ -58,6 +66,7 @@ mod tests {
         let out = compose("#include \"a.wgsl\"\n#include \"b.wgsl\"\nfn f() {}", &extra);
         assert_eq!(out.matches("const A").count(), 1);
         assert!(out.contains("const B"));
+        assert_eq!(included("#include \"b.wgsl\"\nfn f() {}", &extra), ["b.wgsl", "a.wgsl"]);
         assert!(out.ends_with("fn f() {}\n"));
     }
 

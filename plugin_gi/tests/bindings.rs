@@ -9,7 +9,9 @@ mod binding_check;
 fn every_gi_bind_group_is_its_wgsl() {
     // The engine's groups that the GI's shaders include (common.wgsl's globals).
     let included = engine::passes::BINDINGS.iter().filter(|g| {
-        plugin_gi::SHADERS.iter().any(|(_, source)| source.contains(&format!("#include \"{}\"", g.shader)))
+        plugin_gi::SHADERS
+            .iter()
+            .any(|(_, source)| engine::shader::included(source, plugin_gi::SHADER_INCLUDES).contains(&g.shader))
     });
     let included: Vec<_> = included.copied().collect();
     let problems =

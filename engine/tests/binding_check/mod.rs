@@ -9,27 +9,6 @@ use std::collections::BTreeMap;
 use engine::bindings::{BindingKind, WgslGroup};
 use engine::wgpu::TextureFormat;
 
-/// The files `source` includes, directly or through another include (`#include "name"`).
-fn includes_of(source: &str, includes: &[(&str, &str)]) -> Vec<String> {
-    let mut found: Vec<String> = Vec::new();
-    let mut stack = vec![source.to_owned()];
-    while let Some(text) = stack.pop() {
-        for line in text.lines() {
-            let Some(rest) = line.trim().strip_prefix("#include") else { continue };
-            let name = rest.trim().trim_matches('"').to_owned();
-            if found.contains(&name) {
-                continue;
-            }
-            let all = engine::shader::ENGINE_INCLUDES.iter().chain(includes);
-            if let Some((_, text)) = all.clone().find(|(n, _)| *n == name) {
-                stack.push(text.to_string());
-            }
-            found.push(name);
-        }
-    }
-    found
-}
-
 /// What naga says a global is, in [`BindingKind`]'s words; `texture_2d<f32>` may be read either way.
 fn kinds_of(module: &naga::Module, var: &naga::GlobalVariable) -> Result<Vec<BindingKind>, String> {
     use naga::{AddressSpace, ImageClass, ScalarKind, StorageAccess, TypeInner};
@@ -102,7 +81,7 @@ pub fn check(
                 continue;
             }
         };
-        let own = includes_of(source, includes);
+        let own = engine::shader::included(source, includes);
         let mut groups: BTreeMap<u32, Vec<(u32, naga::Handle<naga::GlobalVariable>)>> = BTreeMap::new();
         for (handle, var) in module.global_variables.iter() {
             if let Some(b) = &var.binding {
@@ -111,10 +90,8 @@ pub fn check(
         }
         for (group, mut vars) in groups {
             vars.sort();
-            let candidates: Vec<&WgslGroup> = all
-                .iter()
-                .filter(|d| d.group == group && (d.shader == *name || own.iter().any(|i| i == d.shader)))
-                .collect();
+            let candidates: Vec<&WgslGroup> =
+                all.iter().filter(|d| d.group == group && (d.shader == *name || own.contains(&d.shader))).collect();
             if candidates.is_empty() {
                 problems.push(format!("{name}: @group({group}) is described by no Rust list (bindings::WgslGroup)"));
                 continue;
