@@ -1,7 +1,8 @@
 //! History pairs owned by the graph: last frame's `current` is this frame's `previous`; both
-//! start from zeros after `reset_history` and after a resize.
+//! start from zeros after `reset_history` and after a resize, and a frame that does not write
+//! a history leaves it worth no frames.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 
 use engine::gpu::Gpu;
@@ -23,6 +24,8 @@ struct Shift {
     hdr: engine::graph::Handle<Image>,
     /// `history_frames` of the buffer and the image, each frame.
     seen: Rc<RefCell<Vec<(u32, u32)>>>,
+    /// Frames that run without this pass (it declares nothing).
+    skip: Rc<Cell<bool>>,
 }
 
 struct ShiftIo {
@@ -35,22 +38,26 @@ struct ShiftIo {
 }
 
 impl RenderPass for Shift {
-    type Io = ShiftIo;
+    type Io = Option<ShiftIo>;
     fn name(&self) -> &str {
         "shift"
     }
-    fn declare(&self, d: &mut PassDecl<'_>) -> ShiftIo {
+    fn declare(&self, d: &mut PassDecl<'_>) -> Option<ShiftIo> {
+        if self.skip.get() {
+            return None;
+        }
         let usage = BufferUsages::COPY_SRC | BufferUsages::COPY_DST;
         let image = TextureDesc { size: SizeRule::ViewScaled(0.5), ..TextureDesc::target(TextureFormat::Rgba16Float) };
-        ShiftIo {
+        Some(ShiftIo {
             previous: d.read(self.buffer.previous()),
             current: d.create(self.buffer.current(), BufferDesc { size: 16, usage }),
             image_previous: d.read(self.image.previous()),
             _image: d.create(self.image.current(), image),
             _hdr: d.write(self.hdr),
-        }
+        })
     }
-    fn run(&mut self, io: &ShiftIo, ctx: &mut PassContext<'_>) {
+    fn run(&mut self, io: &Option<ShiftIo>, ctx: &mut PassContext<'_>) {
+        let Some(io) = io else { return };
         self.frame += 1;
         ctx.write_buffer(&io.current, 0, &self.frame.to_le_bytes());
         ctx.encoder.copy_buffer_to_buffer(ctx.buffer(&io.previous), 0, ctx.buffer(&io.current), 4, 12);
@@ -61,6 +68,7 @@ impl RenderPass for Shift {
 struct ShiftPlugin {
     buffer: Rc<RefCell<Option<History<Buffer>>>>,
     seen: Rc<RefCell<Vec<(u32, u32)>>>,
+    skip: Rc<Cell<bool>>,
 }
 
 impl Plugin for ShiftPlugin {
@@ -71,8 +79,8 @@ impl Plugin for ShiftPlugin {
         let (buffer, image, hdr) =
             (ctx.history_buffer("shift.words"), ctx.history_image("shift.image"), ctx.core().hdr);
         *self.buffer.borrow_mut() = Some(buffer);
-        let seen = self.seen.clone();
-        ctx.add_pass(Stage::Composite, Shift { frame: 0, buffer, image, hdr, seen });
+        let (seen, skip) = (self.seen.clone(), self.skip.clone());
+        ctx.add_pass(Stage::Composite, Shift { frame: 0, buffer, image, hdr, seen, skip });
     }
 }
 
@@ -80,7 +88,8 @@ impl Plugin for ShiftPlugin {
 fn history_carries_last_frame_and_starts_from_zeros_after_a_reset_or_resize() {
     let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
     let (buffer, seen) = (Rc::new(RefCell::new(None)), Rc::new(RefCell::new(Vec::new())));
-    let plugin = ShiftPlugin { buffer: buffer.clone(), seen: seen.clone() };
+    let skip = Rc::new(Cell::new(false));
+    let plugin = ShiftPlugin { buffer: buffer.clone(), seen: seen.clone(), skip: skip.clone() };
     let mut renderer = Renderer::new(&gpu, &Scene::default(), vec![Box::new(plugin)]).unwrap();
     let history = buffer.borrow().expect("built");
     let view = ViewState::default();
@@ -109,4 +118,13 @@ fn history_carries_last_frame_and_starts_from_zeros_after_a_reset_or_resize() {
     frame(&mut renderer, (80, 60));
     assert_eq!(seen.borrow().last(), Some(&(2, 0)));
     assert_eq!(words(&renderer), [6, 5, 4, 0]);
+
+    // A frame without the pass: its history is older than last frame, so it counts for none.
+    skip.set(true);
+    frame(&mut renderer, (80, 60));
+    skip.set(false);
+    frame(&mut renderer, (80, 60));
+    assert_eq!(seen.borrow().last(), Some(&(0, 0)), "a frame that did not write a history breaks it");
+    frame(&mut renderer, (80, 60));
+    assert_eq!(seen.borrow().last(), Some(&(1, 1)));
 }

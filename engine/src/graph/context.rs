@@ -100,7 +100,8 @@ impl<'a> PassContext<'a> {
     }
 
     /// Frames of history behind a history pair's `previous` (read through `access`): 0 right
-    /// after a reset, a resize or the first frame, when it holds zeros.
+    /// after a reset, a resize or the first frame, when it holds zeros, and after a frame that
+    /// did not write it, when it holds an older frame's.
     pub fn history_frames<K>(&self, access: &impl Access<K>) -> u32 {
         let id = access.handle().id;
         self.resources.kept.age(self.resources.registry.primary(id))

@@ -57,11 +57,17 @@ impl KeptResources {
         self.kept.get(&id).map_or(0, |k| k.age)
     }
 
-    /// After a frame that wrote `id`'s current: it becomes the previous.
-    pub fn advance(&mut self, id: ResourceId) {
-        if let Some(k) = self.kept.get_mut(&id) {
-            k.flip = !k.flip;
-            k.age = k.age.saturating_add(1);
+    /// After a frame: each history pair whose current it wrote (`written`) swaps, the current
+    /// becoming the previous; every other pair's previous is older than last frame, so it
+    /// counts as no history (age 0) until written again.
+    pub fn end_frame(&mut self, written: &[ResourceId]) {
+        for (id, k) in &mut self.kept {
+            if written.contains(id) {
+                k.flip = !k.flip;
+                k.age = k.age.saturating_add(1);
+            } else if k.physical.len() == 2 {
+                k.age = 0;
+            }
         }
     }
 

@@ -337,9 +337,7 @@ impl RenderGraph {
             t.finish(encoder, order.iter().map(|&i| self.passes[i].node.name().to_owned()).collect());
         }
         // What was written as current is the previous of the next frame.
-        for &id in &compiled.swapped {
-            self.kept.advance(id);
-        }
+        self.kept.end_frame(&compiled.swapped);
         Ok(())
     }
 }
