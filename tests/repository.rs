@@ -449,3 +449,26 @@ fn the_gi_stage_table_names_every_gi_shader_and_pass() {
     }
     assert!(missing.is_empty(), "docs/architecture.md's table of the GI's stages does not name: {missing:?}");
 }
+
+/// A GI pass module and its WGSL are found by one name: `cuts` is passes/cuts.rs and cuts.wgsl.
+#[test]
+fn each_gi_pass_and_its_wgsl_share_a_name() {
+    let root = root();
+    let wgsl: Vec<String> = std::fs::read_dir(root.join("shaders/gi"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    let mut unmatched = Vec::new();
+    for entry in std::fs::read_dir(root.join("plugin_gi/src/passes")).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        let stem = name.trim_end_matches(".rs");
+        // The parameters are a struct of gi_common.wgsl, which every stage includes.
+        if ["mod", "params"].contains(&stem) {
+            continue;
+        }
+        if !wgsl.iter().any(|w| w.starts_with(stem) && w.ends_with(".wgsl")) {
+            unmatched.push(format!("plugin_gi/src/passes/{name}"));
+        }
+    }
+    assert!(unmatched.is_empty(), "GI passes with no WGSL of their name in shaders/gi: {unmatched:?}");
+}

@@ -9,7 +9,7 @@
 //! volumes end). As the fine slots refine the coarse ones, each lies inside one coarse slot:
 //! a fine light's volume adds what it gives beyond what its share of that coarse light gives,
 //! so where the volume ends, the light beyond it is still there, in the coarse light
-//! (shaders/gi/light_stream.wgsl, light_volumes.wgsl).
+//! (shaders/gi/article_stream.wgsl, article_volumes.wgsl).
 
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
@@ -46,7 +46,7 @@ pub struct DistributionTable {
     pub fine: Vec<(Slot, u32)>,
 }
 
-/// What a table entry is (`ENTRY_*` in light_stream.wgsl).
+/// What a table entry is (`ENTRY_*` in article_stream.wgsl).
 pub const ENTRY_COARSE: u32 = 0;
 pub const ENTRY_FINE: u32 = 1;
 
@@ -128,7 +128,7 @@ impl DistributionTable {
         Self { coarse, fine }
     }
 
-    /// The GPU form (light_stream.wgsl's `entries`): the coarse slots, then the fine ones,
+    /// The GPU form (article_stream.wgsl's `entries`): the coarse slots, then the fine ones,
     /// each tier along a Z-order curve over the base.
     pub fn entries(&self) -> Vec<[u32; 4]> {
         let pack = |s: &Slot| s.x | s.y << 16;

@@ -6,7 +6,7 @@
 
 use engine::passes::LAMP_MAP_SIZE;
 
-use crate::gather::{cuts_layout, CutsLayout};
+use crate::cuts_layout::{cuts_layout, CutsLayout};
 use crate::grids::SENDER_PAD;
 use crate::settings::{GiSettings, Method};
 
@@ -96,7 +96,7 @@ impl GiFrame {
         let mut lamp = Senders::new(settings, size, attached);
         // A cut has room for the pyramid's whole top level, which only the camera's flux
         // G-buffer can make larger than CUT_MAX (a detached lamp's has 16×16 nodes).
-        let indirect = crate::gather::fit_cuts_budget(settings.indirect_size().resolve(size), bounce.flux);
+        let indirect = crate::cuts_layout::fit_cuts_budget(settings.indirect_size().resolve(size), bounce.flux);
         let floor = crate::settings::min_level(size.1, indirect.1);
         bounce.finest_level = floor.saturating_sub(bounce.halvings);
         lamp.finest_level = floor.saturating_sub(lamp.halvings);
@@ -109,19 +109,29 @@ impl GiFrame {
         self.settings.enabled
     }
 
-    /// The GI is on and its first bounce is `method`'s.
-    pub fn runs(&self, method: Method) -> bool {
-        self.enabled() && self.settings.method == method
-    }
-
     /// Light is stopped by the surfaces between a sender and a receiver.
     pub fn visibility(&self) -> bool {
         self.settings.visibility == 1
     }
 
-    /// The bounces after the first that are computed.
-    pub fn further_bounces(&self) -> u32 {
-        self.settings.bounces.saturating_sub(1)
+    /// The bounces computed: `gi.bounces` with the cuts' method and the lamp on the head,
+    /// else the first alone (the article's method is its one bounce, see docs/gi.md; a
+    /// further bounce's senders are the camera's view, lit by the bounce before).
+    pub fn bounces(&self) -> u32 {
+        if self.settings.method == Method::Cuts && self.attached {
+            self.settings.bounces.max(1)
+        } else {
+            1
+        }
+    }
+
+    /// The `k`th bounce's senders (k from 1) and its cuts' layout.
+    pub fn of_bounce(&self, k: u32) -> (Senders, CutsLayout) {
+        if k <= 1 {
+            (self.lamp, self.cuts)
+        } else {
+            (self.bounce, self.bounce_cuts)
+        }
     }
 }
 

@@ -40,17 +40,15 @@ engine::gpu_struct! {
         pub split_ratio: f32,
         /// Lights are not split below this pyramid level.
         pub min_level: u32,
-        /// 0: flux from the lamp; 1: flux from the previous bounce's irradiance.
-        pub source: u32,
         /// 2: the gather's receivers share the cut in a 2×2 pattern; 1: each evaluates all of it.
         pub interleave: u32,
         /// The side in lamp-view texels of one flux G-buffer texel (a power of two).
         pub flux_block: u32,
+        /// The article method's interleaved sampling: its lights dealt over N×N sub-images.
+        pub article_interleave: u32,
         /// Where the receivers' and the flux G-buffer's grids lie this frame (see `grids`).
         pub receiver_offset: [f32; 2],
         pub sender_offset: [f32; 2],
-        /// The article method's interleaved sampling: its lights dealt over N×N sub-images.
-        pub article_interleave: u32,
         /// The article method's fine light volumes, in sizes of their coarse lights.
         pub volume_reach: f32,
         /// The whole cells the receivers' grid has stepped back, mod RECEIVER_PERIOD each way
@@ -60,7 +58,7 @@ engine::gpu_struct! {
         /// The periods the senders' grid has stepped back, plus SENDER_STEPS_OFFSET, each way
         /// (x | y << 16).
         pub sender_steps: u32,
-        pub pad: [u32; 2],
+        pub pad: [u32; 3],
         /// The frame the lamp view (the flux G-buffer's source) was rendered from: its origin,
         /// its forward axis, and its right and up axes scaled by `lamp_tan` (w unused), so a
         /// texel's corner rays follow from its index: the reference's footprints in its near
@@ -92,7 +90,7 @@ engine::gpu_struct! {
 engine::gpu_struct! {
     /// The gather's counters, `Stats` in cuts.wgsl (which fills them; atomics there): first the
     /// `lights` view's indirect draw arguments (the centre tile's cut), then the totals. With
-    /// `gi.method = article` light_stream.wgsl fills them: the dots are the fine tier's lights,
+    /// `gi.method = article` article_stream.wgsl fills them: the dots are the fine tier's lights,
     /// `lights` the volumes drawn, `tiles` the distribution table's slots, `full` 0.
     #[repr(C)]
     #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
@@ -152,10 +150,15 @@ engine::gpu_struct! {
     pub struct TemporalParams {
         /// Last frame's view-projection, column-major.
         pub previous_view_proj: [[f32; 4]; 4],
-        /// This frame's weight, 1 with history, the history's slack.
-        pub blend: [f32; 4],
-        /// Last frame's `GiParams::receiver_offset` (x, y; z and w unused).
-        pub previous_offset: [f32; 4],
+        /// Last frame's `GiParams::receiver_offset`.
+        pub previous_offset: [f32; 2],
+        /// The weight of this frame's irradiance (1: none of the history's).
+        pub current_weight: f32,
+        /// How far history may lie outside this frame's neighbourhood, relative.
+        pub slack: f32,
+        /// 1 when the history holds last frame's irradiance.
+        pub has_history: u32,
+        pub pad: [u32; 3],
     }
 }
 

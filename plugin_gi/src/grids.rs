@@ -135,7 +135,7 @@ mod tests {
     /// levels (to GROUP_LEVELS) keep their grouping.
     #[test]
     fn the_senders_pad_is_whole_pyramid_workgroups() {
-        assert_eq!(SENDER_PAD % crate::pyramid::GROUP_SIDE, 0);
+        assert_eq!(SENDER_PAD % crate::passes::GROUP_SIDE, 0);
     }
 
     #[test]

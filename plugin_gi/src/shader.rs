@@ -7,8 +7,10 @@ pub const INCLUDES: &[(&str, &str)] = &[
     ("gi_common.wgsl", include_str!("../../shaders/gi/gi_common.wgsl")),
     ("receivers.wgsl", include_str!("../../shaders/gi/receivers.wgsl")),
     ("visibility.wgsl", include_str!("../../shaders/gi/visibility.wgsl")),
-    ("sub_image_layout.wgsl", include_str!("../../shaders/gi/sub_image_layout.wgsl")),
-    // The gather's body, included by its two entry points (see crate::gather).
+    ("article_sub_image_layout.wgsl", include_str!("../../shaders/gi/article_sub_image_layout.wgsl")),
+    // The bodies of the pyramid and the sum, each included by the files of its entry points
+    // (crate::passes::pyramid, crate::passes::gather).
+    ("pyramid.wgsl", include_str!("../../shaders/gi/pyramid.wgsl")),
     ("gather.wgsl", include_str!("../../shaders/gi/gather.wgsl")),
 ];
 

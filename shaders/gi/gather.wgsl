@@ -2,8 +2,9 @@
 // reflection lights of its 8×8 tile's cut through the flux pyramid (built by cuts.wgsl). The
 // body of the pass, included by its two entry points: gather_subgroup.wgsl, where the lanes of
 // a subgroup share the loading and unpacking of lights, and gather_invocation.wgsl, where each
-// invocation sums alone (see plugin_gi/src/gather.rs for which a device gets). Each supplies
-// `sequence_irradiance`.
+// invocation sums alone (see plugin_gi/src/passes/gather.rs for which a device gets). Each
+// supplies `sequence_irradiance`, and two entry points: `main` for the first bounce (`store`)
+// and `main_bounce` for a further one (`store_bounce`).
 //
 // The receivers sum each light's irradiance as a disc of its area (disc_irradiance) over the
 // cut, interleaved: the cut's lights fall into four classes (cuts.wgsl stores class c at the
@@ -25,16 +26,14 @@
 @group(1) @binding(2) var gbuffer_normal: texture_2d<f32>;
 @group(1) @binding(3) var gbuffer_position: texture_2d<f32>;
 @group(1) @binding(4) var irradiance_out: texture_storage_2d<rgba32float, write>;
+// The cuts, and with VISIBILITY the sight bits after them (`sight_word`, sight.wgsl).
 @group(1) @binding(5) var<storage, read> cuts: array<vec4u>;
-// Further bounces (params.source == 1): the total so far, added to the output, and this
-// bounce's irradiance alone, for the next bounce's flux.
-@group(1) @binding(6) var accumulate: texture_2d<f32>;
-@group(1) @binding(7) var bounce_out: texture_storage_2d<rgba32float, write>;
 // Where each receiver is evaluated, as the cuts pass found it (receivers.wgsl).
-@group(1) @binding(8) var<storage, read> receiver_texels: array<u32>;
-// Which of the tile's nine tested receivers see each light of its cut (sight.wgsl), read
-// where VISIBILITY.
-@group(1) @binding(9) var<storage, read> sight: array<u32>;
+@group(1) @binding(6) var<storage, read> receiver_texels: array<u32>;
+// Further bounces (`main_bounce`): the total of the bounces before, added to the output, and
+// this bounce's irradiance alone, for the next bounce's flux.
+@group(2) @binding(0) var accumulate: texture_2d<f32>;
+@group(2) @binding(1) var bounce_out: texture_storage_2d<rgba32float, write>;
 
 // Whether light is stopped by the surfaces between (gi.visibility): a pipeline each way, so
 // the way without reads nothing more.
@@ -149,7 +148,9 @@ fn sequence_sight(s: Sequence, k: u32) -> u32 {
     if !VISIBILITY {
         return 511u;
     }
-    return sight[u32(i32(s.first) + i32(k) * s.step)];
+    let slot = u32(i32(s.first) + i32(k) * s.step);
+    let word = sight_word(slot, params.indirect_size, table.levels[PYRAMID_LEVELS - 1u]);
+    return cuts[word.x][word.y];
 }
 
 // The share of a light's irradiance that reaches this invocation's receiver: the sight of it
@@ -224,8 +225,34 @@ struct Lanes {
     count: u32,
 };
 
+// One receiver's irradiance from this bounce's lights: where it lies in the indirect target,
+// whether it lies in it, and its depth and normal packed (pack_receiver), which ride along for
+// the composite's upsampling.
+struct Gathered {
+    q: vec2u,
+    in_view: bool,
+    e: vec3f,
+    receiver: f32,
+};
+
+// The first bounce's irradiance out.
+fn store(g: Gathered) {
+    if g.in_view {
+        textureStore(irradiance_out, vec2i(g.q), vec4f(g.e, g.receiver));
+    }
+}
+
+// A further bounce's: its own, and the total with the bounces before.
+fn store_bounce(g: Gathered) {
+    if g.in_view {
+        textureStore(bounce_out, vec2i(g.q), vec4f(g.e, 1.0));
+        let total = g.e + textureLoad(accumulate, vec2i(g.q), 0).rgb;
+        textureStore(irradiance_out, vec2i(g.q), vec4f(total, g.receiver));
+    }
+}
+
 // Receiver r of the tile of workgroup `group`.
-fn gather(r: u32, lanes: Lanes, group: vec2u) {
+fn gather(r: u32, lanes: Lanes, group: vec2u) -> Gathered {
     let p = receiver_position(r);
     let li = u32(p.y * 8 + p.x);
     let q = group * CUT_TILE + vec2u(p);
@@ -323,13 +350,5 @@ fn gather(r: u32, lanes: Lanes, group: vec2u) {
         }
         e += own;
     }
-    if in_view {
-        var total = e;
-        if params.source == FROM_BOUNCE {
-            textureStore(bounce_out, vec2i(q), vec4f(e, 1.0));
-            total += textureLoad(accumulate, vec2i(q), 0).rgb;
-        }
-        // The receiver's depth and normal ride along for the composite's upsampling.
-        textureStore(irradiance_out, vec2i(q), vec4f(total, select(0.0, pack_receiver(depth, n.xyz), valid)));
-    }
+    return Gathered(q, in_view, e, select(0.0, pack_receiver(depth, n.xyz), valid));
 }

@@ -13,5 +13,10 @@ fn sequence_irradiance(s: Sequence, centre: vec3f, x: vec3f, n: vec3f, lanes: La
 
 @compute @workgroup_size(64)
 fn main(@builtin(local_invocation_index) r: u32, @builtin(workgroup_id) group: vec3u) {
-    gather(r, Lanes(0u, 1u), group.xy);
+    store(gather(r, Lanes(0u, 1u), group.xy));
+}
+
+@compute @workgroup_size(64)
+fn main_bounce(@builtin(local_invocation_index) r: u32, @builtin(workgroup_id) group: vec3u) {
+    store_bounce(gather(r, Lanes(0u, 1u), group.xy));
 }

@@ -2,7 +2,7 @@
 // unpacks one light of every `lanes.count`, and each light is broadcast to the others in turn.
 // On a CPU device a subgroup is a SIMD row, whose loads from storage go lane by lane and whose
 // unpacking is the same work in every lane: this halved the gather's time on lavapipe. Taken
-// where every subgroup has 4 or 8 lanes (plugin_gi/src/gather.rs), so that one lies within a
+// where every subgroup has 4 or 8 lanes (plugin_gi/src/passes/gather.rs), so that one lies within a
 // run of eight receivers of one class (`receiver_position`) and sums one sequence.
 #include "gather.wgsl"
 
@@ -53,5 +53,11 @@ fn sequence_irradiance(s: Sequence, centre: vec3f, x: vec3f, n: vec3f, lanes: La
 @compute @workgroup_size(64)
 fn main(@builtin(subgroup_invocation_id) lane: u32, @builtin(subgroup_size) size: u32,
     @builtin(subgroup_id) subgroup: u32, @builtin(workgroup_id) group: vec3u) {
-    gather(subgroup * size + lane, Lanes(lane, size), group.xy);
+    store(gather(subgroup * size + lane, Lanes(lane, size), group.xy));
+}
+
+@compute @workgroup_size(64)
+fn main_bounce(@builtin(subgroup_invocation_id) lane: u32, @builtin(subgroup_size) size: u32,
+    @builtin(subgroup_id) subgroup: u32, @builtin(workgroup_id) group: vec3u) {
+    store_bounce(gather(subgroup * size + lane, Lanes(lane, size), group.xy));
 }

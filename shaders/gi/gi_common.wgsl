@@ -30,7 +30,7 @@ struct ReflectionLight {
     faces_away: f32,
 };
 
-// The gather's counters (cuts.wgsl fills them; with `gi.method = article`, light_stream.wgsl):
+// The gather's counters (cuts.wgsl fills them; with `gi.method = article`, article_stream.wgsl):
 // first the `lights` view's draw arguments (the cut of the tile at the centre of the view; the
 // article's fine lights), then Σ cut sizes over the tiles, the tiles with receivers, the tiles
 // whose cut filled up (the article's: the volumes drawn, the table's slots, 0).
@@ -45,7 +45,7 @@ struct Stats {
     pad: u32,
 };
 
-// The article method's instance stream (light_stream.wgsl writes it, light_volumes.wgsl
+// The article method's instance stream (article_stream.wgsl writes it, article_volumes.wgsl
 // draws it): one light volume each.
 struct VolumeLight {
     position: vec3f,
@@ -78,34 +78,34 @@ struct GiParams {
     split_ratio: f32,
     // Lights are never split below this pyramid level (a receiver's footprint).
     min_level: u32,
-    // FROM_LAMP: flux from the lamp, Φ = ρ·I·Ω; FROM_BOUNCE: flux from the previous bounce,
-    // Φ = ρ·E·A.
-    source: u32,
     // 2: receivers evaluate the cut interleaved in a 2×2 pattern; 1: each evaluates all of it.
     interleave: u32,
     // The side in lamp-view texels of one flux G-buffer texel (a power of two).
     flux_block: u32,
+    // The article method's interleaved sampling: N, its lights dealt over N×N sub-images
+    // (article_sub_image_layout.wgsl).
+    article_interleave: u32,
     // Where the receivers' grid lies this frame, in cells (−½ to ½ each way), and how many
     // lamp-view texels before the view's corner the flux G-buffer's blocks begin: both grids
     // move with the picture as the camera turns, so receivers and senders keep to their world
     // points (plugin_gi/src/grids.rs).
     receiver_offset: vec2f,
     sender_offset: vec2f,
-    // The article method's interleaved sampling: N, its lights dealt over N×N sub-images, and
-    // its fine light volumes' radius in sizes of their coarse lights (light_stream.wgsl).
-    article_interleave: u32,
+    // The article method's fine light volumes' radius in sizes of their coarse lights
+    // (article_stream.wgsl).
     volume_reach: f32,
     // The whole cells the receivers' grid has stepped back, mod RECEIVER_PERIOD each way
     // (x | y << 16: `receiver_steps`): the gather's 2×2 interleave pattern follows their
     // parity (gather.wgsl's `light_class`), the article's sub-images them mod N
-    // (sub_image_layout.wgsl), so a world point keeps its class of lights.
+    // (article_sub_image_layout.wgsl), so a world point keeps its class of lights.
     receiver_steps: u32,
     // The periods (SENDER_PAD blocks) the senders' grid has stepped back, plus
     // SENDER_STEPS_OFFSET, each way (x | y << 16): the article's lights keep their subsets by
-    // them (light_stream.wgsl).
+    // them (article_stream.wgsl).
     sender_steps: u32,
     pad0: u32,
     pad1: u32,
+    pad2: u32,
     // The frame the lamp view was rendered from: origin, forward axis, and right and up axes
     // scaled by lamp_tan, so a texel's corner rays follow from its index.
     view_origin: vec4f,
@@ -114,9 +114,6 @@ struct GiParams {
     view_up: vec4f,
 };
 
-// Where a flux texel's flux comes from (GiParams.source).
-const FROM_LAMP: u32 = 0u;
-const FROM_BOUNCE: u32 = 1u;
 
 // The grids' steps (plugin_gi/src/grids.rs): the receivers' are kept mod RECEIVER_PERIOD; the
 // senders' are whole periods of SENDER_PAD base blocks, stored plus SENDER_STEPS_OFFSET (both
@@ -260,6 +257,15 @@ fn tile_cut(tile: vec2u, indirect_size: vec2u, top_level: vec4u) -> vec2u {
 // Where the k-th light of the near list of the cut at `base` (of `stride` vec4s) is stored.
 fn near_slot(base: u32, stride: u32, k: u32) -> u32 {
     return base + stride - 1u - k;
+}
+
+// With visibility the cuts buffer goes on past every tile's cut with one u32 a slot of them
+// (written by sight.wgsl): which of its tile's nine tested receivers see the light in that
+// slot. The vec4 and the component of slot `slot`'s, for cuts laid out as in `tile_cut`.
+fn sight_word(slot: u32, indirect_size: vec2u, top_level: vec4u) -> vec2u {
+    let tiles = (indirect_size + CUT_TILE - 1u) / CUT_TILE;
+    let end = tiles.x * tiles.y * cut_stride(top_level.y * top_level.z);
+    return vec2u(end + slot / 4u, slot % 4u);
 }
 
 // Per level of the pyramid: offset into the node buffer, width, height; then (entry

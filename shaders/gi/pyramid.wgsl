@@ -1,11 +1,12 @@
 // GI flux pyramid: turns the lamp-view G-buffer into reflected flux per texel and reduces it
 // into a quadtree of reflection lights with the article's merge filter, in two dispatches:
 // `flux_levels` writes levels 0–3 (each workgroup reduces its 8×8 texels in workgroup memory)
-// and `reduce` levels 4–6 from level 3 the same way. Where the flux comes from (lamp, bounce)
-// and what the base's texels are (single lamp-view texels, blocks) are constants each
-// pipeline is made with, so that it compiles only its own way: a CPU device runs both sides of
-// a branch, on a uniform value too (the bounce's side cost the first bounce's pyramid an eighth
-// of its time).
+// and `reduce` levels 4–6 from level 3 the same way. The body of the pass, included by the
+// file for each source of flux, which supplies `sender_flux` and `show_flux`:
+// pyramid_lamp.wgsl (the first bounce) and pyramid_bounce.wgsl (further ones). What the base's
+// texels are (single lamp-view texels, blocks) is a constant each pipeline is made with, so
+// that it compiles only its own way: a CPU device runs both sides of a branch, on a uniform
+// value too.
 //
 // The base (level 0) is the lamp view reduced to params.flux_size: each base texel merges its
 // block of lamp-view texels as the levels above merge theirs. Attached, the base is as fine as
@@ -24,9 +25,6 @@
 @group(1) @binding(4) var<uniform> table: Levels;
 @group(1) @binding(5) var<storage, read_write> nodes: array<Node>;
 @group(1) @binding(6) var flux_out: texture_storage_2d<rgba32float, write>;
-@group(1) @binding(7) var flux_view_out: texture_storage_2d<rgba16float, write>;
-// The previous bounce's irradiance (only read where FLUX_SOURCE is FROM_BOUNCE).
-@group(1) @binding(8) var previous_irradiance: texture_2d<f32>;
 
 // The levels each workgroup builds above its 8×8 nodes: `flux_levels` levels 0 to
 // GROUP_LEVELS, `reduce` the rest from level GROUP_LEVELS.
@@ -35,8 +33,6 @@ const GROUP_LEVELS: u32 = 3u;
 var<workgroup> wide: array<Node, 64>;
 var<workgroup> narrow: array<Node, 16>;
 
-// Where a flux texel's flux comes from: FROM_LAMP or FROM_BOUNCE (as params.source says).
-override FLUX_SOURCE: u32 = FROM_LAMP;
 // Whether the base's texels are blocks of lamp-view texels (as params.flux_block > 1 says).
 override FLUX_BLOCKS: bool = false;
 
@@ -92,15 +88,7 @@ fn view_texel_node(t: vec2u, view: vec2u) -> Node {
     let x = textureLoad(gbuffer_position, vec2i(t), 0).xyz;
     let rho = textureLoad(gbuffer_albedo, vec2i(t), 0).rgb;
     let area = texel_area(omega, x, normal.xyz, globals.lamp_pos.xyz);
-    if FLUX_SOURCE == FROM_LAMP {
-        node.flux = lamp_reflected_flux(rho, x, omega);
-    } else {
-        // The irradiance sample nearest the texel's (receiver_texel's inverse).
-        let cells = (vec2f(t) + 0.5) * vec2f(params.indirect_size) / vec2f(view) - 0.5 - params.receiver_offset;
-        let low = vec2u(clamp(vec2i(round(cells)), vec2i(0), vec2i(params.indirect_size) - 1));
-        let e = textureLoad(previous_irradiance, vec2i(low), 0).rgb;
-        node.flux = rho * e * area;
-    }
+    node.flux = sender_flux(t, view, rho, x, omega, area);
     node.position = x;
     node.normal = normal.xyz;
     node.area = area;
@@ -236,9 +224,7 @@ fn texel_node(id: vec2u) -> Node {
         shown -= vec2i(round(params.sender_offset / f32(k)));
     }
     textureStore(flux_out, vec2i(id), vec4f(node.flux, 1.0));
-    // The flux view: Φ per unit lamp solid angle relative to the lamp power, i.e. ρ·T(ω). (A
-    // store outside the texture is dropped.)
-    textureStore(flux_view_out, shown, vec4f(node.flux / (omega * max(params.lamp_power, 1e-20)), 1.0));
+    show_flux(shown, node.flux, omega);
     return node;
 }
 

@@ -6,18 +6,24 @@
 // surface: depth within DEPTH_TOLERANCE, normal within NORMAL_COS); where none was (a
 // disocclusion) the frame starts afresh. History whose lighting changed is pulled into the
 // range this frame's 3×3 neighbourhood on the same surface spans, widened by
-// `temporal.blend.z`: a light switched off or an object moved out of the beam leaves no trail.
+// `temporal.slack`: a light switched off or an object moved out of the beam leaves no trail.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
 struct TemporalParams {
     // Last frame's view-projection: where a world point was on screen.
     previous_view_proj: mat4x4f,
-    // x: weight of this frame (1 = no history); y: 1 when last frame's irradiance is in
-    // `history`; z: how far history may lie outside this frame's neighbourhood, relative.
-    blend: vec4f,
-    // Last frame's GiParams.receiver_offset (xy): where last frame's samples lay.
-    previous_offset: vec4f,
+    // Last frame's GiParams.receiver_offset: where last frame's samples lay.
+    previous_offset: vec2f,
+    // The weight of this frame's irradiance (1: none of the history's).
+    current_weight: f32,
+    // How far history may lie outside this frame's neighbourhood, relative.
+    slack: f32,
+    // 1 when `history` holds last frame's irradiance.
+    has_history: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 };
 
 @group(1) @binding(0) var<uniform> params: GiParams;
@@ -52,7 +58,7 @@ fn reprojected(x: vec3f, n: vec3f, full: vec2f, low: vec2i, offset: vec2f) -> ve
     let pixel = vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * full - offset;
     // The samples about it, and its place between them, as the composite finds them, so a
     // still view takes each sample's own history.
-    let place = sample_place(pixel, vec2u(full), vec2u(low), temporal.previous_offset.xy);
+    let place = sample_place(pixel, vec2u(full), vec2u(low), temporal.previous_offset);
     let base = place.base;
     var f = place.f;
     // On a sample to rounding (a still view): that sample alone, so nothing drifts.
@@ -93,7 +99,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let c = textureLoad(current, q, 0);
-    if bitcast<u32>(c.w) == 0u || temporal.blend.y < 0.5 || temporal.blend.x >= 1.0 {
+    if bitcast<u32>(c.w) == 0u || temporal.has_history == 0u || temporal.current_weight >= 1.0 {
         textureStore(blended, q, c);
         return;
     }
@@ -123,8 +129,8 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
             }
         }
     }
-    let slack = temporal.blend.z;
+    let slack = temporal.slack;
     let kept = clamp(previous.rgb, lo * (1.0 - slack), hi * (1.0 + slack));
     // (Not mix(): history equal to this frame must give this frame exactly.)
-    textureStore(blended, q, vec4f(kept + (c.rgb - kept) * temporal.blend.x, c.w));
+    textureStore(blended, q, vec4f(kept + (c.rgb - kept) * temporal.current_weight, c.w));
 }

@@ -1,63 +1,51 @@
-//! The first bounce's gather: the irradiance of every indirect-target pixel from the pyramid.
+//! A bounce's sum (shaders/gi/gather.wgsl): each receiver of the indirect target sums the
+//! irradiance of its tile's cut, one workgroup a tile; with visibility each light weighed by
+//! which receivers see it (the sight pass). The first bounce's is the irradiance; a further
+//! bounce's is added to the bounces' before, and kept alone for the next one to reflect.
 
-use engine::graph::{Buffer, BufferDesc, Image, PassContext, PassDecl, Read, RenderPass, TextureDesc, Write};
+use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
+use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, TextureDesc, Write};
 use engine::passes::CoreResources;
 use engine::wgpu;
 
 use super::params::fixed;
-use crate::gather::{cuts_desc, receivers_desc, CutsLayout, Gather, GatherTargets, SumLanes};
-use crate::gpu_types::{CENTRE_LIGHTS, GATHER_STATS_SIZE};
+use crate::cuts_layout::CutsLayout;
+use crate::frame::GiFrame;
+use crate::pipelines::compute_pipeline_with;
 use crate::resources::GiResources;
-use crate::settings::Method;
-use crate::shared::GiHandle;
-use crate::sight_depth::{self, SightDepth};
+use crate::schedule::GiPass;
+use crate::shader::module;
 
-pub struct GatherPass {
-    handle: GiHandle,
-    core: CoreResources,
-    gi: GiResources,
-    gather: Gather,
-    sight_depth: SightDepth,
-    /// Stand in for the bounce-only bindings (one read, one written).
-    sinks: [wgpu::TextureView; 2],
-}
-
-pub struct GatherIo {
-    params: Read<Buffer>,
-    levels: Read<Buffer>,
-    nodes: Read<Buffer>,
-    normal: Read<Image>,
-    position: Read<Image>,
-    cuts: Write<Buffer>,
-    irradiance: Write<Image>,
-    stats: Write<Buffer>,
-    lights: Write<Buffer>,
-    receivers: Write<Buffer>,
-    /// With visibility: the view depth the sight pass marches, made here for every bounce.
-    sight_depth: Option<Write<Image>>,
-    layout: CutsLayout,
-}
+pub const SUBGROUP_SHADER: &str = include_str!("../../../shaders/gi/gather_subgroup.wgsl");
+pub const INVOCATION_SHADER: &str = include_str!("../../../shaders/gi/gather_invocation.wgsl");
 
 /// The irradiance format: f32 storage, summed by the gather itself (no blending).
 pub const IRRADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
-/// A 1×1 Rgba32Float texture for bindings a pass does not use.
-pub(crate) fn sink(device: &wgpu::Device) -> wgpu::TextureView {
-    device
-        .create_texture(&wgpu::TextureDescriptor {
-            label: Some("gi sink"),
-            size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: IRRADIANCE_FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        })
-        .create_view(&Default::default())
-}
+/// The sum's group 1 (gather.wgsl).
+pub const GATHER: Group = Group::new(
+    "gi gather",
+    &[
+        B::uniform("params"),
+        B::uniform("table"),
+        B::texture("gbuffer_normal"),
+        B::texture("gbuffer_position"),
+        B::storage_texture("irradiance_out", IRRADIANCE_FORMAT),
+        B::storage("cuts"),
+        B::storage("receiver_texels"),
+    ],
+);
+/// A further bounce's group 2 (`main_bounce`).
+pub const BOUNCE: Group =
+    Group::new("gi gather bounce", &[B::texture("accumulate"), B::storage_texture("bounce_out", IRRADIANCE_FORMAT)]);
 
-/// An irradiance-sized storage texture (a gather's output, or a bounce's).
+/// Where the sum's groups are declared.
+pub const BINDINGS: &[WgslGroup] = &[
+    WgslGroup::new("gather.wgsl", 1, &GATHER),
+    WgslGroup::new("gather.wgsl", 2, &BOUNCE).for_entry_points(&["main_bounce"]),
+];
+
+/// An irradiance-sized storage texture (a bounce's irradiance, or the blend's).
 pub(crate) fn irradiance_texture(size: (u32, u32)) -> TextureDesc {
     let usage = wgpu::TextureUsages::STORAGE_BINDING
         | wgpu::TextureUsages::TEXTURE_BINDING
@@ -66,93 +54,140 @@ pub(crate) fn irradiance_texture(size: (u32, u32)) -> TextureDesc {
     TextureDesc { usage, size: fixed(size), ..TextureDesc::target(IRRADIANCE_FORMAT) }
 }
 
-/// The gather's counters and the centre tile's lights.
-pub(crate) fn stats_desc() -> BufferDesc {
-    let usage = wgpu::BufferUsages::STORAGE
-        | wgpu::BufferUsages::COPY_SRC
-        | wgpu::BufferUsages::COPY_DST
-        | wgpu::BufferUsages::INDIRECT;
-    BufferDesc { size: GATHER_STATS_SIZE, usage }
+/// How the sum's invocations load their lights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SumLanes {
+    /// The lanes of a subgroup share the loading and unpacking of lights
+    /// (gather_subgroup.wgsl): where every subgroup has 4 or 8 lanes, as on a CPU device
+    /// (lavapipe), whose SIMD rows load from storage lane by lane.
+    Subgroup,
+    /// Each invocation loads its own (gather_invocation.wgsl): everywhere else.
+    Invocation,
 }
 
-pub(crate) fn lights_desc() -> BufferDesc {
-    let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST;
-    BufferDesc { size: CENTRE_LIGHTS * std::mem::size_of::<crate::ReflectionLight>() as u64, usage }
+impl SumLanes {
+    pub fn for_device(gpu: &engine::gpu::Gpu) -> Self {
+        match gpu.subgroup_size() {
+            Some(4 | 8) => SumLanes::Subgroup,
+            _ => SumLanes::Invocation,
+        }
+    }
+}
+
+/// Sums bounce `bounce`'s cuts (1: the headlamp's).
+pub struct GatherPass {
+    name: String,
+    bounce: u32,
+    core: CoreResources,
+    gi: GiResources,
+    layout: wgpu::BindGroupLayout,
+    /// A further bounce's group 2.
+    bounce_layout: Option<wgpu::BindGroupLayout>,
+    /// Without visibility and with it (the shader's `VISIBILITY`).
+    pipelines: [wgpu::ComputePipeline; 2],
+}
+
+pub struct GatherIo {
+    params: Read<Buffer>,
+    levels: Read<Buffer>,
+    normal: Read<Image>,
+    position: Read<Image>,
+    cuts: Read<Buffer>,
+    receivers: Read<Buffer>,
+    irradiance: Write<Image>,
+    /// A further bounce's: the bounces' before, and its own alone.
+    bounce: Option<(Read<Image>, Write<Image>)>,
+    layout: CutsLayout,
+    visibility: bool,
 }
 
 impl GatherPass {
     pub(crate) fn new(
         device: &wgpu::Device,
         globals: &wgpu::BindGroupLayout,
-        handle: GiHandle,
+        bounce: u32,
+        lanes: SumLanes,
         core: CoreResources,
         gi: GiResources,
-        lanes: SumLanes,
     ) -> Self {
-        Self {
-            gather: Gather::new(device, globals, lanes),
-            sight_depth: SightDepth::new(device, globals),
-            handle,
-            core,
-            gi,
-            sinks: [sink(device), sink(device)],
-        }
+        let layout = GATHER.layout(device);
+        let bounce_layout = (bounce > 1).then(|| BOUNCE.layout(device));
+        let source = match lanes {
+            SumLanes::Subgroup => SUBGROUP_SHADER,
+            SumLanes::Invocation => INVOCATION_SHADER,
+        };
+        let module = module(device, "gi gather", source);
+        let entry = if bounce > 1 { "main_bounce" } else { "main" };
+        let layouts = [Some(globals), Some(&layout), bounce_layout.as_ref()];
+        let pipelines = [false, true].map(|visibility| {
+            let constants = [("VISIBILITY", f64::from(u8::from(visibility)))];
+            compute_pipeline_with(device, "gi gather", &module, entry, &layouts, &constants)
+        });
+        let name = if bounce == 1 { "gi_gather".to_owned() } else { format!("gi_bounce{bounce}_gather") };
+        Self { name, bounce, core, gi, layout, bounce_layout, pipelines }
     }
 }
 
-impl RenderPass for GatherPass {
-    /// None with `gi.method = article` (`gi_article` makes the irradiance then).
-    type Io = Option<GatherIo>;
+impl GiPass for GatherPass {
+    type Io = GatherIo;
 
     fn name(&self) -> &str {
-        "gi_gather"
+        &self.name
     }
 
-    fn declare(&self, d: &mut PassDecl<'_>) -> Option<GatherIo> {
-        let frame = self.handle.frame(d.size(), d.view().headlamp.attached);
-        if frame.settings.method != Method::Cuts {
-            return None;
-        }
-        let (size, layout) = (frame.indirect, frame.cuts);
-        let gi = &self.gi;
-        Some(GatherIo {
-            params: d.read(gi.params),
-            levels: d.read(gi.levels),
-            nodes: d.read(gi.nodes),
+    fn declare(&self, d: &mut PassDecl<'_>, frame: &GiFrame) -> GatherIo {
+        let k = self.bounce as usize;
+        let own = &self.gi.bounces[k - 1];
+        let size = frame.indirect;
+        GatherIo {
+            params: d.read(own.params),
+            levels: d.read(self.gi.levels),
             normal: d.read(self.core.gbuffer.normal),
             position: d.read(self.core.gbuffer.position),
-            cuts: d.create(gi.cuts, cuts_desc(&layout)),
-            irradiance: d.create(gi.irradiance, irradiance_texture(size)),
-            stats: d.create(gi.stats, stats_desc()),
-            lights: d.create(gi.lights, lights_desc()),
-            receivers: d.create(gi.receivers, receivers_desc(size)),
-            sight_depth: sight_depth::declare(d, gi.sight_depth, frame.visibility()),
-            layout,
-        })
+            cuts: d.read(own.cuts),
+            receivers: d.read(own.receivers),
+            irradiance: d.create(own.irradiance, irradiance_texture(size)),
+            bounce: (k > 1)
+                .then(|| (d.read(self.gi.bounces[k - 2].irradiance), d.create(own.alone, irradiance_texture(size)))),
+            layout: frame.of_bounce(self.bounce).1,
+            visibility: frame.visibility(),
+        }
     }
 
-    fn run(&mut self, io: &Option<GatherIo>, ctx: &mut PassContext<'_>) {
-        let Some(io) = io else { return };
-        let mut dispatches = 0;
-        if let Some(depth) = &io.sight_depth {
-            dispatches += self.sight_depth.record(ctx, &io.position, depth);
-        }
-        let targets = GatherTargets {
-            params: ctx.buffer(&io.params),
-            levels: ctx.buffer(&io.levels),
-            nodes: ctx.buffer(&io.nodes),
-            cuts: ctx.buffer(&io.cuts),
-            normal: ctx.view(&io.normal),
-            position: ctx.view(&io.position),
-            irradiance: ctx.view(&io.irradiance),
-            accumulate: &self.sinks[0],
-            bounce: &self.sinks[1],
-            stats: ctx.buffer(&io.stats),
-            lights: ctx.buffer(&io.lights),
-            receivers: ctx.buffer(&io.receivers),
-            sight_depth: io.sight_depth.as_ref().map(|h| ctx.view(h)),
+    fn run(&mut self, io: &GatherIo, _: &GiFrame, ctx: &mut PassContext<'_>) {
+        let device = &ctx.gpu.device;
+        let group = GATHER.bind(
+            device,
+            &self.layout,
+            &[
+                ("params", ctx.buffer(&io.params).into()),
+                ("table", ctx.buffer(&io.levels).into()),
+                ("gbuffer_normal", ctx.view(&io.normal).into()),
+                ("gbuffer_position", ctx.view(&io.position).into()),
+                ("irradiance_out", ctx.view(&io.irradiance).into()),
+                ("cuts", ctx.buffer(&io.cuts).into()),
+                ("receiver_texels", ctx.buffer(&io.receivers).into()),
+            ],
+        );
+        let bounce = match (&io.bounce, &self.bounce_layout) {
+            (Some((before, alone)), Some(layout)) => Some(BOUNCE.bind(
+                device,
+                layout,
+                &[("accumulate", ctx.view(before).into()), ("bounce_out", ctx.view(alone).into())],
+            )),
+            _ => None,
         };
-        dispatches += self.gather.record(&ctx.gpu.device, ctx.encoder, ctx.frame.globals, io.layout, &targets);
-        ctx.count_dispatches(dispatches);
+        let mut pass = ctx
+            .encoder
+            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi gather"), timestamp_writes: None });
+        pass.set_bind_group(0, ctx.frame.globals, &[]);
+        pass.set_pipeline(&self.pipelines[usize::from(io.visibility)]);
+        pass.set_bind_group(1, &group, &[]);
+        if let Some(bounce) = &bounce {
+            pass.set_bind_group(2, bounce, &[]);
+        }
+        pass.dispatch_workgroups(io.layout.tiles.0, io.layout.tiles.1, 1);
+        drop(pass);
+        ctx.count_dispatches(1);
     }
 }

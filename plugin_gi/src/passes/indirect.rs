@@ -57,6 +57,14 @@ impl Output {
     }
 }
 
+/// What the upsampling passes are made with: the settings, the engine's resources and the
+/// GI's.
+pub(crate) struct Gi {
+    pub handle: GiHandle,
+    pub core: CoreResources,
+    pub resources: GiResources,
+}
+
 /// The upsampling draw, into one target.
 struct Upsample {
     handle: GiHandle,
@@ -76,13 +84,7 @@ pub struct UpsampleInputs {
 }
 
 impl Upsample {
-    fn new(
-        device: &wgpu::Device,
-        globals: &wgpu::BindGroupLayout,
-        (handle, core, gi): (GiHandle, CoreResources, GiResources),
-        label: &str,
-        output: Output,
-    ) -> Self {
+    fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, gi: Gi, label: &str, output: Output) -> Self {
         let layout = output.group().layout(device);
         let fragment = match output {
             Output::Frame => "fs_frame",
@@ -100,6 +102,7 @@ impl Upsample {
             &targets,
             Default::default(),
         );
+        let Gi { handle, core, resources: gi } = gi;
         Self { handle, core, gi, output, layout, pipeline }
     }
 
@@ -110,7 +113,7 @@ impl Upsample {
         }
         let g = &self.core.gbuffer;
         Some(UpsampleInputs {
-            params: d.read(self.gi.params),
+            params: d.read(self.gi.params()),
             textures: [self.gi.history.current(), g.albedo, g.normal, g.position].map(|h| d.read(h)),
             frame: (self.output == Output::Frame).then(|| [self.core.direct, self.core.emissive].map(|h| d.read(h))),
         })
@@ -156,9 +159,9 @@ pub enum IndirectCompositeIo {
 }
 
 impl IndirectCompositePass {
-    pub(crate) fn new(gpu: &Gpu, layouts: &CoreLayouts, shared: (GiHandle, CoreResources, GiResources)) -> Self {
-        let gi_off = CompositePass::new(gpu, layouts, &shared.1);
-        Self { upsample: Upsample::new(&gpu.device, &layouts.globals, shared, "gi composite", Output::Frame), gi_off }
+    pub(crate) fn new(gpu: &Gpu, layouts: &CoreLayouts, gi: Gi) -> Self {
+        let gi_off = CompositePass::new(gpu, layouts, &gi.core);
+        Self { upsample: Upsample::new(&gpu.device, &layouts.globals, gi, "gi composite", Output::Frame), gi_off }
     }
 }
 
@@ -199,13 +202,9 @@ pub struct IndirectViewIo {
 }
 
 impl IndirectViewPass {
-    pub(crate) fn new(
-        device: &wgpu::Device,
-        globals: &wgpu::BindGroupLayout,
-        shared: (GiHandle, CoreResources, GiResources),
-    ) -> Self {
-        let target = shared.2.indirect;
-        Self { upsample: Upsample::new(device, globals, shared, "gi indirect view", Output::IndirectOnly), target }
+    pub(crate) fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, gi: Gi) -> Self {
+        let target = gi.resources.indirect;
+        Self { upsample: Upsample::new(device, globals, gi, "gi indirect view", Output::IndirectOnly), target }
     }
 }
 

@@ -57,8 +57,8 @@ impl RenderPass for LightsViewPass {
 
     fn declare(&self, d: &mut PassDecl<'_>) -> LightsViewIo {
         LightsViewIo {
-            lights: d.read(self.gi.lights),
-            stats: d.read(self.gi.stats),
+            lights: d.read(self.gi.first().lights),
+            stats: d.read(self.gi.first().stats),
             hdr: d.read(self.hdr),
             target: d.create(self.gi.lights_view, TextureDesc::target(FORMAT)),
         }

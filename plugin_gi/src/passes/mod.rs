@@ -1,40 +1,50 @@
 //! The GI's render-graph passes, in frame order. docs/architecture.md's table of the GI's
-//! stages gives each pass its Rust modules, its WGSL files (shaders/gi/) and its tests.
+//! stages gives each pass its Rust module here, its WGSL files (shaders/gi/, named as the
+//! module) and its tests.
 
 mod article;
-mod bounces;
-mod flux;
+mod cuts;
 mod gather;
 mod indirect;
 mod lights_view;
 mod params;
+mod pyramid;
 mod reference;
+mod sight;
+mod sight_depth;
 mod temporal;
 mod view_model_irradiance;
 
+pub use article::volumes::LIGHTS_PER_SLOT;
 pub use article::ArticlePass;
-pub use bounces::BouncePass;
-pub use flux::FluxPass;
-pub use gather::GatherPass;
+pub use cuts::CutsPass;
+pub use gather::{GatherPass, SumLanes};
+pub(crate) use indirect::Gi;
 pub use indirect::{IndirectCompositePass, IndirectViewPass};
 pub use lights_view::LightsViewPass;
 pub use params::GiParamsPass;
+pub use pyramid::PyramidPass;
+pub(crate) use pyramid::{GROUP_LEVELS, GROUP_SIDE};
 pub use reference::ReferencePass;
 pub(crate) use reference::GROUP as REFERENCE_GROUP;
+pub use sight::SightPass;
+pub use sight_depth::SightDepthPass;
 pub use temporal::TemporalPass;
 pub use view_model_irradiance::ViewModelIrradiancePass;
 
-/// Every WGSL file of the plugin, for validation tests.
+/// Every WGSL file of the plugin that is a module of its own (the includes are
+/// crate::shader's), for validation tests.
 pub const SHADERS: &[(&str, &str)] = &[
-    ("gi/pyramid.wgsl", crate::pyramid::SHADER),
-    ("gi/cuts.wgsl", crate::gather::CUTS_SHADER),
-    ("gi/gather_subgroup.wgsl", crate::gather::GATHER_SUBGROUP_SHADER),
-    ("gi/gather_invocation.wgsl", crate::gather::GATHER_INVOCATION_SHADER),
-    ("gi/sight.wgsl", crate::gather::SIGHT_SHADER),
-    ("gi/sight_depth.wgsl", crate::sight_depth::SHADER),
-    ("gi/light_stream.wgsl", crate::light_volumes::STREAM_SHADER),
-    ("gi/light_volumes.wgsl", crate::light_volumes::VOLUMES_SHADER),
-    ("gi/sub_images.wgsl", crate::light_volumes::SUB_IMAGES_SHADER),
+    ("gi/pyramid_lamp.wgsl", pyramid::LAMP_SHADER),
+    ("gi/pyramid_bounce.wgsl", pyramid::BOUNCE_SHADER),
+    ("gi/sight_depth.wgsl", sight_depth::SHADER),
+    ("gi/cuts.wgsl", cuts::SHADER),
+    ("gi/sight.wgsl", sight::SHADER),
+    ("gi/gather_subgroup.wgsl", gather::SUBGROUP_SHADER),
+    ("gi/gather_invocation.wgsl", gather::INVOCATION_SHADER),
+    ("gi/article_stream.wgsl", article::volumes::STREAM_SHADER),
+    ("gi/article_volumes.wgsl", article::volumes::VOLUMES_SHADER),
+    ("gi/article_sub_images.wgsl", article::volumes::SUB_IMAGES_SHADER),
     ("gi/indirect.wgsl", indirect::SHADER),
     ("gi/lights_view.wgsl", lights_view::SHADER),
     ("gi/reference.wgsl", reference::SHADER),
@@ -46,10 +56,12 @@ pub const SHADERS: &[(&str, &str)] = &[
 /// (plugin_gi/tests/bindings.rs reflects the WGSL against these).
 pub fn bindings() -> Vec<engine::bindings::WgslGroup> {
     [
-        crate::pyramid::BINDINGS,
-        crate::gather::BINDINGS,
-        crate::sight_depth::BINDINGS,
-        crate::light_volumes::BINDINGS,
+        pyramid::BINDINGS,
+        sight_depth::BINDINGS,
+        cuts::BINDINGS,
+        sight::BINDINGS,
+        gather::BINDINGS,
+        article::volumes::BINDINGS,
         indirect::BINDINGS,
         lights_view::BINDINGS,
         reference::BINDINGS,

@@ -1,17 +1,16 @@
 //! The GI's parameters for the shaders, from the frame's description (crate::frame), and the
-//! pass that writes the first bounce's GiParams uniform, its one writer; where the lamp's view
-//! comes from.
+//! passes that write each GiParams uniform, its one writer each: the first bounce's, and the
+//! one further bounces share; where the lamp's view comes from.
 
 use engine::glam::Vec3;
-use engine::graph::{Buffer, BufferDesc, Handle, PassContext, PassDecl, RenderPass, SizeRule, Write};
+use engine::graph::{Buffer, BufferDesc, Handle, PassContext, PassDecl, SizeRule, Write};
 use engine::passes::GBuffer;
 use engine::wgpu;
 
 use crate::frame::GiFrame;
 use crate::gpu_types::GiParams;
 use crate::grids::Grids;
-use crate::pyramid::FluxSource;
-use crate::shared::GiHandle;
+use crate::schedule::GiPass;
 
 /// Where the lamp's view comes from: the camera G-buffer while the lamp is attached (the
 /// article's first-person case), the lamp's own G-buffer (reflective shadow map) when detached.
@@ -28,13 +27,10 @@ pub(crate) fn fixed((w, h): (u32, u32)) -> SizeRule {
     SizeRule::Fixed(w, h)
 }
 
-/// The frame's GI parameters, for a pyramid built from `source`.
-pub(crate) fn params(frame: &GiFrame, ctx: &PassContext<'_>, source: FluxSource) -> GiParams {
+/// The frame's GI parameters for bounce `bounce` (from 1).
+pub(crate) fn params(frame: &GiFrame, ctx: &PassContext<'_>, bounce: u32) -> GiParams {
     let (settings, indirect) = (&frame.settings, frame.indirect);
-    let senders = match source {
-        FluxSource::Lamp => frame.lamp,
-        FluxSource::Bounce => frame.bounce,
-    };
+    let (senders, _) = frame.of_bounce(bounce);
     let flux = senders.flux;
     let lamp = ctx.frame.lamp;
     let tan_y = (lamp.fov_y * 0.5).tan();
@@ -49,7 +45,6 @@ pub(crate) fn params(frame: &GiFrame, ctx: &PassContext<'_>, source: FluxSource)
         merge_distance: settings.merge_distance,
         split_ratio: settings.split_ratio,
         min_level: senders.finest_level,
-        source: source.code(),
         interleave: settings.interleave,
         flux_block: block,
         receiver_offset: grids.receiver_offset,
@@ -58,7 +53,7 @@ pub(crate) fn params(frame: &GiFrame, ctx: &PassContext<'_>, source: FluxSource)
         volume_reach: settings.volume_reach,
         receiver_steps: grids.receiver_steps[0] | grids.receiver_steps[1] << 16,
         sender_steps: grids.sender_steps[0] | grids.sender_steps[1] << 16,
-        pad: [0; 2],
+        pad: [0; 3],
         view_origin: lamp.position.extend(1.0).to_array(),
         view_forward: (lamp.rotation * Vec3::NEG_Z).extend(0.0).to_array(),
         view_right: (lamp.rotation * Vec3::X * tan_y * lamp.aspect).extend(0.0).to_array(),
@@ -74,26 +69,38 @@ pub(crate) fn params_desc() -> BufferDesc {
     }
 }
 
-/// Writes the first bounce's GiParams, which the flux, gather, composite and reference read.
+/// Writes a GiParams uniform: the first bounce's (which the flux, the cuts, the sum, the
+/// composite and the reference read), or the one every further bounce reads.
 pub struct GiParamsPass {
-    pub(crate) handle: GiHandle,
-    pub(crate) params: Handle<Buffer>,
+    name: &'static str,
+    /// 1, or 2 for every further bounce (their parameters are the same).
+    bounce: u32,
+    params: Handle<Buffer>,
 }
 
-impl RenderPass for GiParamsPass {
+impl GiParamsPass {
+    pub(crate) fn first(params: Handle<Buffer>) -> Self {
+        Self { name: "gi_params", bounce: 1, params }
+    }
+
+    pub(crate) fn further(params: Handle<Buffer>) -> Self {
+        Self { name: "gi_bounce_params", bounce: 2, params }
+    }
+}
+
+impl GiPass for GiParamsPass {
     type Io = Write<Buffer>;
 
     fn name(&self) -> &str {
-        "gi_params"
+        self.name
     }
 
-    fn declare(&self, d: &mut PassDecl<'_>) -> Write<Buffer> {
+    fn declare(&self, d: &mut PassDecl<'_>, _: &GiFrame) -> Write<Buffer> {
         d.create(self.params, params_desc())
     }
 
-    fn run(&mut self, params: &Write<Buffer>, ctx: &mut PassContext<'_>) {
-        let frame = self.handle.frame(ctx.frame.size, ctx.frame.view.headlamp.attached);
-        let value = self::params(&frame, ctx, FluxSource::Lamp);
+    fn run(&mut self, params: &Write<Buffer>, frame: &GiFrame, ctx: &mut PassContext<'_>) {
+        let value = self::params(frame, ctx, self.bounce);
         ctx.write_buffer(params, 0, bytemuck::bytes_of(&value));
     }
 }

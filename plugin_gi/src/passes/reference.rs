@@ -2,14 +2,16 @@
 //! no cutoff and no clamp (the `reference` view). Culled by the graph unless something shows or reads it.
 
 use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
-use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, RenderPass, SizeRule, TextureDesc, Write};
+use engine::graph::{Buffer, BufferDesc, Image, PassContext, PassDecl, Read, SizeRule, TextureDesc, Write};
 use engine::passes::CoreResources;
 use engine::wgpu;
 
 use super::params::lamp_view;
+use crate::frame::GiFrame;
 use crate::gpu_types::SenderRange;
 use crate::pipelines::{compute_pipeline, uniform_buffer};
 use crate::resources::GiResources;
+use crate::schedule::GiPass;
 use crate::shared::GiHandle;
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/reference.wgsl");
@@ -48,9 +50,8 @@ pub struct ReferencePass {
     gi: GiResources,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
-    /// One uniform per sender range, and the running sums, kept while the sizes hold.
+    /// One uniform per sender range, each dispatch's own, made as the lamp view grows.
     ranges: Vec<wgpu::Buffer>,
-    sums: Option<((u32, u32), wgpu::Buffer)>,
 }
 
 impl ReferencePass {
@@ -64,7 +65,7 @@ impl ReferencePass {
         let layout = REFERENCE.layout(device);
         let module = crate::shader::module(device, "gi reference", SHADER);
         let pipeline = compute_pipeline(device, "gi reference", &module, "main", &[Some(globals), Some(&layout)]);
-        Self { handle, core, gi, layout, pipeline, ranges: Vec::new(), sums: None }
+        Self { handle, core, gi, layout, pipeline, ranges: Vec::new() }
     }
 }
 
@@ -74,18 +75,20 @@ pub struct ReferenceIo {
     /// receivers).
     textures: [Read<Image>; 6],
     target: Write<Image>,
+    /// Each receiver's irradiance summed over the sender ranges so far (a vec4 each).
+    sums: Write<Buffer>,
     /// The lamp view's size: one sender a texel.
     senders: (u32, u32),
 }
 
-impl RenderPass for ReferencePass {
+impl GiPass for ReferencePass {
     type Io = ReferenceIo;
 
     fn name(&self) -> &str {
         "gi_reference"
     }
 
-    fn declare(&self, d: &mut PassDecl<'_>) -> ReferenceIo {
+    fn declare(&self, d: &mut PassDecl<'_>, frame: &GiFrame) -> ReferenceIo {
         let usage =
             wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
         let desc = TextureDesc {
@@ -94,17 +97,19 @@ impl RenderPass for ReferencePass {
             usage,
             mip_levels: 1,
         };
-        let attached = d.view().headlamp.attached;
-        let (g, lamp) = (&self.core.gbuffer, lamp_view(&self.core.gbuffer, &self.core.lamp, attached));
+        let (g, lamp) = (&self.core.gbuffer, lamp_view(&self.core.gbuffer, &self.core.lamp, frame.attached));
+        let (w, h) = frame.size;
+        let sums = BufferDesc { size: (u64::from(w) * u64::from(h)).max(1) * 16, usage: wgpu::BufferUsages::STORAGE };
         ReferenceIo {
-            params: d.read(self.gi.params),
+            params: d.read(self.gi.params()),
             textures: [lamp.albedo, lamp.position, lamp.normal, g.albedo, g.normal, g.position].map(|h| d.read(h)),
             target: d.create(self.gi.reference, desc),
-            senders: self.handle.frame(d.size(), attached).lamp.view,
+            sums: d.create(self.gi.reference_sums, sums),
+            senders: frame.lamp.view,
         }
     }
 
-    fn run(&mut self, io: &ReferenceIo, ctx: &mut PassContext<'_>) {
+    fn run(&mut self, io: &ReferenceIo, _: &GiFrame, ctx: &mut PassContext<'_>) {
         let device = &ctx.gpu.device;
         let (w, h) = ctx.frame.size;
         // (A view smaller than the stride is evaluated at its first pixel.)
@@ -115,16 +120,7 @@ impl RenderPass for ReferencePass {
         while self.ranges.len() < chunks as usize {
             self.ranges.push(uniform_buffer(device, "gi reference range", std::mem::size_of::<SenderRange>() as u64));
         }
-        if self.sums.as_ref().is_none_or(|(size, _)| *size != (w, h)) {
-            let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("gi reference sums"),
-                size: (w as u64 * h as u64).max(1) * 16,
-                usage: wgpu::BufferUsages::STORAGE,
-                mapped_at_creation: false,
-            });
-            self.sums = Some(((w, h), buffer));
-        }
-        let sums = &self.sums.as_ref().expect("made above").1;
+        let sums = ctx.buffer(&io.sums);
         let [lamp_albedo, lamp_position, lamp_normal, albedo, normal, position] = &io.textures;
         for chunk in 0..chunks {
             let range = SenderRange {

@@ -3,22 +3,21 @@
 //! the point was hidden and pulled into this frame's range where the lighting changed. Its
 //! output, a graph history pair, is what the composite upsamples.
 
-use std::cell::Cell;
-
 use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::glam::{Mat4, Vec3};
-use engine::graph::{Buffer, History, Image, PassContext, PassDecl, Read, RenderPass, Write};
+use engine::graph::{Buffer, BufferDesc, Image, PassContext, PassDecl, Read, Write};
 use engine::headlamp::LampFrustum;
 use engine::passes::CoreResources;
 use engine::view_state::ViewState;
 use engine::wgpu;
 
 use super::gather::{irradiance_texture, IRRADIANCE_FORMAT};
+use crate::frame::GiFrame;
 use crate::gpu_types::TemporalParams;
 use crate::grids::Grids;
-use crate::pipelines::{compute_pipeline, uniform_buffer, TEXEL_GROUP};
+use crate::pipelines::{compute_pipeline, TEXEL_GROUP};
 use crate::resources::GiResources;
-use crate::shared::GiHandle;
+use crate::schedule::GiPass;
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/temporal.wgsl");
 
@@ -71,115 +70,104 @@ fn lamp_steadiness(before: &LampFrustum, now: &LampFrustum) -> f32 {
     (1.0 - (turn / LAMP_TURN_CUT_DEG).max(moved / LAMP_MOVE_CUT_M)).max(0.0)
 }
 
+/// The frame whose result the history holds, as the blend needs it.
+#[derive(Clone, Copy)]
+struct Previous {
+    view_proj: Mat4,
+    lamp: LampFrustum,
+    emission: Emission,
+    /// Where its receivers lay (`GiParams::receiver_offset`).
+    receiver_offset: [f32; 2],
+}
+
 pub struct TemporalPass {
-    handle: GiHandle,
     core: CoreResources,
-    params: engine::graph::Handle<Buffer>,
-    irradiance: engine::graph::Handle<Image>,
-    receivers: engine::graph::Handle<Buffer>,
-    history: History<Image>,
-    uniform: wgpu::Buffer,
+    gi: GiResources,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
-    /// The view-projection, the lamp, what it emitted and where the receivers lay in the frame
-    /// whose result `history` holds.
-    previous: Option<(Mat4, LampFrustum, Emission, [f32; 2])>,
-    /// Set by a frame with the GI off (which runs nothing here): the history is stale then.
-    skipped: Cell<bool>,
+    /// The last frame blended; the graph says whether the history still holds it.
+    previous: Option<Previous>,
 }
 
 pub struct TemporalIo {
     params: Read<Buffer>,
+    temporal: Write<Buffer>,
     current: Read<Image>,
     previous: Read<Image>,
     position: Read<Image>,
     blended: Write<Image>,
     receivers: Read<Buffer>,
-    size: (u32, u32),
+}
+
+/// The blend's own parameters, a uniform it writes each frame.
+fn temporal_desc() -> BufferDesc {
+    BufferDesc {
+        size: std::mem::size_of::<TemporalParams>() as u64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    }
 }
 
 impl TemporalPass {
     pub(crate) fn new(
         device: &wgpu::Device,
         globals: &wgpu::BindGroupLayout,
-        handle: GiHandle,
         core: CoreResources,
         gi: GiResources,
     ) -> Self {
         let layout = TEMPORAL.layout(device);
         let module = crate::shader::module(device, "gi temporal", SHADER);
         let pipeline = compute_pipeline(device, "gi temporal", &module, "main", &[Some(globals), Some(&layout)]);
-        let uniform = uniform_buffer(device, "gi temporal params", std::mem::size_of::<TemporalParams>() as u64);
-        Self {
-            handle,
-            core,
-            params: gi.params,
-            irradiance: gi.irradiance,
-            receivers: gi.receivers,
-            history: gi.history,
-            uniform,
-            layout,
-            pipeline,
-            previous: None,
-            skipped: Cell::new(false),
-        }
+        Self { core, gi, layout, pipeline, previous: None }
     }
 }
 
-impl RenderPass for TemporalPass {
-    type Io = Option<TemporalIo>;
+impl GiPass for TemporalPass {
+    type Io = TemporalIo;
 
     fn name(&self) -> &str {
         "gi_temporal"
     }
 
-    fn declare(&self, d: &mut PassDecl<'_>) -> Option<TemporalIo> {
-        let frame = self.handle.frame(d.size(), d.view().headlamp.attached);
-        if !frame.enabled() {
-            self.skipped.set(true);
-            return None;
-        }
-        let size = frame.indirect;
-        Some(TemporalIo {
-            params: d.read(self.params),
-            current: d.read(self.irradiance),
-            previous: d.read(self.history.previous()),
+    fn declare(&self, d: &mut PassDecl<'_>, frame: &GiFrame) -> TemporalIo {
+        // The total of every bounce computed.
+        let last = &self.gi.bounces[frame.bounces() as usize - 1];
+        TemporalIo {
+            params: d.read(self.gi.params()),
+            temporal: d.create(self.gi.temporal, temporal_desc()),
+            current: d.read(last.irradiance),
+            previous: d.read(self.gi.history.previous()),
             position: d.read(self.core.gbuffer.position),
-            blended: d.create(self.history.current(), irradiance_texture(size)),
-            receivers: d.read(self.receivers),
-            size,
-        })
+            blended: d.create(self.gi.history.current(), irradiance_texture(frame.indirect)),
+            receivers: d.read(self.gi.first().receivers),
+        }
     }
 
-    fn run(&mut self, io: &Option<TemporalIo>, ctx: &mut PassContext<'_>) {
-        let Some(io) = io else {
-            return;
-        };
-        // The history is not carried through frames without the GI.
-        if self.skipped.replace(false) {
-            self.previous = None;
-        }
+    fn run(&mut self, io: &TemporalIo, frame: &GiFrame, ctx: &mut PassContext<'_>) {
         let (w, h) = ctx.frame.size;
         let view_proj = ctx.frame.view.camera.view_projection(w as f32 / h.max(1) as f32);
         let (lamp, emission) = (ctx.frame.lamp, Emission::of(ctx.frame.view));
-        let previous = self.previous.filter(|p| ctx.history_frames(&io.previous) > 0 && p.2 == emission);
-        let steadiness = previous.map_or(0.0, |(_, before, ..)| lamp_steadiness(&before, &lamp));
+        // (A frame without the GI leaves the history holding an older frame: none then.)
+        let previous = self.previous.filter(|p| ctx.history_frames(&io.previous) > 0 && p.emission == emission);
+        let steadiness = previous.map_or(0.0, |p| lamp_steadiness(&p.lamp, &lamp));
         // (The receivers' grid alone: where this frame's samples lie, for the next frame.)
-        let offset = Grids::of(&ctx.frame.view.camera, ctx.frame.size, io.size, 1).receiver_offset;
-        let history = self.handle.frame(ctx.frame.size, ctx.frame.view.headlamp.attached).settings.history * steadiness;
+        let receiver_offset = Grids::of(&ctx.frame.view.camera, ctx.frame.size, frame.indirect, 1).receiver_offset;
+        let history = frame.settings.history * steadiness;
         let value = TemporalParams {
-            previous_view_proj: previous.map_or(view_proj, |(m, ..)| m).to_cols_array_2d(),
-            blend: [1.0 - history, if history > 0.0 { 1.0 } else { 0.0 }, HISTORY_SLACK, 0.0],
-            previous_offset: previous.map_or([offset[0], offset[1], 0.0, 0.0], |p| [p.3[0], p.3[1], 0.0, 0.0]),
+            previous_view_proj: previous.map_or(view_proj, |p| p.view_proj).to_cols_array_2d(),
+            previous_offset: previous.map_or(receiver_offset, |p| p.receiver_offset),
+            current_weight: 1.0 - history,
+            slack: HISTORY_SLACK,
+            has_history: u32::from(history > 0.0),
+            pad: [0; 3],
         };
-        ctx.gpu.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&value));
-        self.previous = Some((view_proj, lamp, emission, offset));
+        ctx.write_buffer(&io.temporal, 0, bytemuck::bytes_of(&value));
+        self.previous = Some(Previous { view_proj, lamp, emission, receiver_offset });
         let group = TEMPORAL.bind(
             &ctx.gpu.device,
             &self.layout,
             &[
                 ("params", ctx.buffer(&io.params).into()),
-                ("temporal", (&self.uniform).into()),
+                ("temporal", ctx.buffer(&io.temporal).into()),
                 ("current", ctx.view(&io.current).into()),
                 ("history", ctx.view(&io.previous).into()),
                 ("gbuffer_position", ctx.view(&io.position).into()),
@@ -193,7 +181,8 @@ impl RenderPass for TemporalPass {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, ctx.frame.globals, &[]);
         pass.set_bind_group(1, &group, &[]);
-        pass.dispatch_workgroups(io.size.0.div_ceil(TEXEL_GROUP), io.size.1.div_ceil(TEXEL_GROUP), 1);
+        let size = frame.indirect;
+        pass.dispatch_workgroups(size.0.div_ceil(TEXEL_GROUP), size.1.div_ceil(TEXEL_GROUP), 1);
         drop(pass);
         ctx.count_dispatches(1);
     }

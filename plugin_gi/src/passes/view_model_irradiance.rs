@@ -5,14 +5,15 @@
 //! view models; the cube then stays as the engine cleared it.
 
 use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
-use engine::graph::{Buffer, Handle, PassContext, PassDecl, Read, RenderPass, Write};
+use engine::graph::{Buffer, BufferDesc, Handle, PassContext, PassDecl, Read, Write};
 use engine::wgpu;
 
+use crate::frame::GiFrame;
 use crate::gpu_types::Probe;
-use crate::pipelines::{compute_pipeline, uniform_buffer};
+use crate::pipelines::compute_pipeline;
 use crate::quadtree::{Quadtree, LEVELS};
 use crate::resources::GiResources;
-use crate::shared::GiHandle;
+use crate::schedule::GiPass;
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/view_model_irradiance.wgsl");
 
@@ -30,16 +31,15 @@ pub const BINDINGS: &[WgslGroup] = &[WgslGroup::new("gi/view_model_irradiance.wg
 const MAX_NODES: u32 = 4096;
 
 pub struct ViewModelIrradiancePass {
-    handle: GiHandle,
     gi: GiResources,
     irradiance: Handle<Buffer>,
-    /// The probe's point and level: this pass's own uniform, written once a frame.
-    probe: wgpu::Buffer,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
 }
 
 pub struct ViewModelIrradianceIo {
+    /// The probe's point and level: a uniform this pass writes.
+    probe: Write<Buffer>,
     levels: Read<Buffer>,
     nodes: Read<Buffer>,
     irradiance: Write<Buffer>,
@@ -50,7 +50,6 @@ impl ViewModelIrradiancePass {
     pub(crate) fn new(
         device: &wgpu::Device,
         globals: &wgpu::BindGroupLayout,
-        handle: GiHandle,
         gi: GiResources,
         irradiance: Handle<Buffer>,
     ) -> Self {
@@ -58,30 +57,30 @@ impl ViewModelIrradiancePass {
         let module = crate::shader::module(device, "gi view model irradiance", SHADER);
         let pipeline =
             compute_pipeline(device, "gi view model irradiance", &module, "main", &[Some(globals), Some(&layout)]);
-        let probe = uniform_buffer(device, "gi view model probe", std::mem::size_of::<Probe>() as u64);
-        Self { handle, gi, irradiance, probe, layout, pipeline }
+        Self { gi, irradiance, layout, pipeline }
     }
 }
 
-impl RenderPass for ViewModelIrradiancePass {
-    type Io = Option<ViewModelIrradianceIo>;
+impl GiPass for ViewModelIrradiancePass {
+    type Io = ViewModelIrradianceIo;
 
     fn name(&self) -> &str {
         "gi_view_model"
     }
 
-    fn declare(&self, d: &mut PassDecl<'_>) -> Option<ViewModelIrradianceIo> {
-        let frame = self.handle.frame(d.size(), d.view().headlamp.attached);
-        frame.enabled().then(|| ViewModelIrradianceIo {
+    fn declare(&self, d: &mut PassDecl<'_>, frame: &GiFrame) -> ViewModelIrradianceIo {
+        let usage = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+        ViewModelIrradianceIo {
+            probe: d.create(self.gi.probe, BufferDesc { size: std::mem::size_of::<Probe>() as u64, usage }),
             levels: d.read(self.gi.levels),
-            nodes: d.read(self.gi.nodes),
+            nodes: d.read(self.gi.first().nodes),
             irradiance: d.write(self.irradiance),
             flux_size: frame.lamp.flux,
-        })
+        }
     }
 
-    fn run(&mut self, io: &Option<ViewModelIrradianceIo>, ctx: &mut PassContext<'_>) {
-        let (Some(io), Some(point)) = (io, ctx.frame.view.view_model_probe()) else {
+    fn run(&mut self, io: &ViewModelIrradianceIo, _: &GiFrame, ctx: &mut PassContext<'_>) {
+        let Some(point) = ctx.frame.view.view_model_probe() else {
             return;
         };
         let tree = Quadtree::new(io.flux_size.0, io.flux_size.1);
@@ -92,12 +91,12 @@ impl RenderPass for ViewModelIrradiancePass {
             })
             .unwrap_or(LEVELS - 1);
         let probe = Probe { position: [point.x, point.y, point.z, 0.0], level: [level, 0, 0, 0] };
-        ctx.gpu.queue.write_buffer(&self.probe, 0, bytemuck::bytes_of(&probe));
+        ctx.write_buffer(&io.probe, 0, bytemuck::bytes_of(&probe));
         let group = PROBE.bind(
             &ctx.gpu.device,
             &self.layout,
             &[
-                ("probe", (&self.probe).into()),
+                ("probe", ctx.buffer(&io.probe).into()),
                 ("levels", ctx.buffer(&io.levels).into()),
                 ("nodes", ctx.buffer(&io.nodes).into()),
                 ("ambient_cube", ctx.buffer(&io.irradiance).into()),

@@ -1,5 +1,5 @@
-// Where the article method's receivers lie in its N×N sub-images (included by sub_images.wgsl
-// and light_volumes.wgsl, which declare `params`). Receiver q belongs to sub-image
+// Where the article method's receivers lie in its N×N sub-images (included by article_sub_images.wgsl
+// and article_volumes.wgsl, which declare `params`). Receiver q belongs to sub-image
 // (q + shift) mod N at (q + shift) / N, `shift` following the whole cells the receivers' grid
 // has stepped back as the camera turned (GiParams.receiver_steps): so a point of the world
 // keeps its sub-image, and the subset of lights that shades it, as the grid steps (see

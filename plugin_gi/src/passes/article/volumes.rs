@@ -1,10 +1,10 @@
 //! The article's pipeline (`gi.method = article`), on the same pyramid as the cuts: the
 //! distribution table ([`crate::distribution_table`], made on the CPU when the resolution, the
 //! budget or the lamp changes) chooses the pyramid's slots; a compute pass turns them into the
-//! instance stream of the light volumes and its draw arguments (shaders/gi/light_stream.wgsl);
+//! instance stream of the light volumes and its draw arguments (shaders/gi/article_stream.wgsl);
 //! one indirect draw shades every light's volume additively into the receivers
-//! (light_volumes.wgsl), interleaved over N×N sub-images, which are split before and joined
-//! after (sub_images.wgsl). Three dispatches and one draw, whatever the number of lights.
+//! (article_volumes.wgsl), interleaved over N×N sub-images, which are split before and joined
+//! after (article_sub_images.wgsl). Three dispatches and one draw, whatever the number of lights.
 
 use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::headlamp::distribution_texels;
@@ -18,20 +18,20 @@ use crate::pipelines::{compute_pipeline, TEXEL_GROUP};
 use crate::quadtree::Quadtree;
 use crate::shader::module;
 
-pub const STREAM_SHADER: &str = include_str!("../../shaders/gi/light_stream.wgsl");
-pub const VOLUMES_SHADER: &str = include_str!("../../shaders/gi/light_volumes.wgsl");
-pub const SUB_IMAGES_SHADER: &str = include_str!("../../shaders/gi/sub_images.wgsl");
+pub const STREAM_SHADER: &str = include_str!("../../../../shaders/gi/article_stream.wgsl");
+pub const VOLUMES_SHADER: &str = include_str!("../../../../shaders/gi/article_volumes.wgsl");
+pub const SUB_IMAGES_SHADER: &str = include_str!("../../../../shaders/gi/article_sub_images.wgsl");
 
 /// The coarse tier has this share of the budget (its lights cover every receiver of their
 /// sub-image, the fine ones only their volumes).
 const COARSE_SHARE: u32 = 4;
 /// A slot is drawn as at most this many lights (an incoherent one refined two levels, a block
-/// spanning a fold as its two sides; `LIGHTS_PER_SLOT` in light_stream.wgsl).
+/// spanning a fold as its two sides; `LIGHTS_PER_SLOT` in article_stream.wgsl).
 pub const LIGHTS_PER_SLOT: u32 = 32;
-/// The receivers' positions and normals in their sub-images (sub_images.wgsl).
+/// The receivers' positions and normals in their sub-images (article_sub_images.wgsl).
 const RECEIVERS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
-/// The light stream's group 1 (light_stream.wgsl).
+/// The light stream's group 1 (article_stream.wgsl).
 pub const STREAM: Group = Group::new(
     "gi light stream",
     &[
@@ -45,7 +45,7 @@ pub const STREAM: Group = Group::new(
         B::uniform("params"),
     ],
 );
-/// The sub-images' group 1, for both entry points (sub_images.wgsl).
+/// The sub-images' group 1, for both entry points (article_sub_images.wgsl).
 pub const SUB_IMAGES: Group = Group::new(
     "gi sub-images",
     &[
@@ -66,19 +66,20 @@ pub const JOIN: Group = Group::new(
         B::storage_texture("irradiance_out", wgpu::TextureFormat::Rgba32Float),
     ],
 );
-/// The light volumes' group 1 (light_volumes.wgsl).
-pub const VOLUMES: Group = Group::new(
-    "gi light volumes",
-    &[B::uniform("params"), B::storage("stream"), B::uint_texture("receivers"), B::texture("sight_depth")],
-);
+/// The light volumes' group 1 (article_volumes.wgsl).
+pub const VOLUMES: Group =
+    Group::new("gi light volumes", &[B::uniform("params"), B::storage("stream"), B::uint_texture("receivers")]);
+/// `fs_sight`'s group 2: the view depth its march reads.
+pub const VOLUMES_SIGHT: Group = Group::new("gi light volumes sight", &[B::texture("sight_depth")]);
 
 /// Where the article's groups are declared.
 pub const BINDINGS: &[WgslGroup] = &[
-    WgslGroup::new("gi/light_stream.wgsl", 1, &STREAM),
-    WgslGroup::new("gi/sub_images.wgsl", 1, &SUB_IMAGES),
-    WgslGroup::new("gi/sub_images.wgsl", 2, &SPLIT),
-    WgslGroup::new("gi/sub_images.wgsl", 3, &JOIN),
-    WgslGroup::new("gi/light_volumes.wgsl", 1, &VOLUMES),
+    WgslGroup::new("gi/article_stream.wgsl", 1, &STREAM),
+    WgslGroup::new("gi/article_sub_images.wgsl", 1, &SUB_IMAGES),
+    WgslGroup::new("gi/article_sub_images.wgsl", 2, &SPLIT),
+    WgslGroup::new("gi/article_sub_images.wgsl", 3, &JOIN),
+    WgslGroup::new("gi/article_volumes.wgsl", 1, &VOLUMES),
+    WgslGroup::new("gi/article_volumes.wgsl", 2, &VOLUMES_SIGHT).for_entry_points(&["fs_sight"]),
 ];
 
 /// What the table is made for: when any of it changes, it is made again.
@@ -124,15 +125,12 @@ pub struct VolumeTargets<'a> {
     pub nodes: &'a wgpu::Buffer,
     pub normal: &'a wgpu::TextureView,
     pub position: &'a wgpu::TextureView,
-    /// Where each receiver is evaluated (crate::gather::receivers_desc), written here.
+    /// Where each receiver is evaluated (crate::cuts_layout::receivers_desc), written here.
     pub receivers: &'a wgpu::Buffer,
     /// The irradiance out (Rgba32Float storage, the gather's format).
     pub irradiance: &'a wgpu::TextureView,
-    /// With visibility: the view depth to march (crate::sight_depth), made before; None
-    /// without.
+    /// With visibility: the view depth to march (`gi_sight_depth`'s); None without.
     pub sight_depth: Option<&'a wgpu::TextureView>,
-    /// A texture to bind in its place without visibility.
-    pub sink: &'a wgpu::TextureView,
     /// The gather's counters and the `lights` view's lights (the fine tier's).
     pub stats: &'a wgpu::Buffer,
     pub lights: &'a wgpu::Buffer,
@@ -150,7 +148,8 @@ pub struct LightVolumes {
     split_pipeline: wgpu::ComputePipeline,
     join_pipeline: wgpu::ComputePipeline,
     volumes_layout: wgpu::BindGroupLayout,
-    /// Without visibility and with it.
+    sight_layout: wgpu::BindGroupLayout,
+    /// Without visibility (`fs_main`) and with it (`fs_sight`).
     volumes_pipelines: [wgpu::RenderPipeline; 2],
     /// Rgba32Float where the device blends it, else Rgba16Float.
     shaded_format: wgpu::TextureFormat,
@@ -198,6 +197,7 @@ impl LightVolumes {
             &[Some(globals), Some(&common_layout), None, Some(&join_layout)],
         );
         let volumes_layout = VOLUMES.layout(device);
+        let sight_layout = VOLUMES_SIGHT.layout(device);
         let shaded_format =
             if float32_blendable { wgpu::TextureFormat::Rgba32Float } else { wgpu::TextureFormat::Rgba16Float };
         let add = wgpu::BlendComponent {
@@ -211,15 +211,18 @@ impl LightVolumes {
             write_mask: wgpu::ColorWrites::ALL,
         })];
         let volumes_module = module(device, "gi light volumes", VOLUMES_SHADER);
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gi light volumes"),
-            bind_group_layouts: &[Some(globals), Some(&volumes_layout)],
-            immediate_size: 0,
-        });
-        // Without visibility and with it (the shader's VISIBILITY).
         let volumes_pipelines = [false, true].map(|visibility| {
-            let constants = [("VISIBILITY", f64::from(u8::from(visibility)))];
-            let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
+            let (fragment, layouts) = if visibility {
+                ("fs_sight", &[Some(globals), Some(&volumes_layout), Some(&sight_layout)][..])
+            } else {
+                ("fs_main", &[Some(globals), Some(&volumes_layout)][..])
+            };
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("gi light volumes"),
+                bind_group_layouts: layouts,
+                immediate_size: 0,
+            });
+            let options = wgpu::PipelineCompilationOptions::default();
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("gi light volumes"),
                 layout: Some(&pipeline_layout),
@@ -236,7 +239,7 @@ impl LightVolumes {
                 multisample: wgpu::MultisampleState::default(),
                 fragment: Some(wgpu::FragmentState {
                     module: &volumes_module,
-                    entry_point: Some("fs_main"),
+                    entry_point: Some(fragment),
                     compilation_options: options,
                     targets: &targets,
                 }),
@@ -253,6 +256,7 @@ impl LightVolumes {
             split_pipeline,
             join_pipeline,
             volumes_layout,
+            sight_layout,
             volumes_pipelines,
             shaded_format,
             table: None,
@@ -288,7 +292,7 @@ impl LightVolumes {
         t: &VolumeTargets<'_>,
     ) -> (u32, u32) {
         let entries = self.table(device, key).size() / 16;
-        // N sub-images each way, each ⌈size / N⌉ + 1 (sub_image_layout.wgsl).
+        // N sub-images each way, each ⌈size / N⌉ + 1 (article_sub_image_layout.wgsl).
         let (indirect, n) = (t.indirect, t.interleave.max(1));
         let target = ((indirect.0.div_ceil(n) + 1) * n, (indirect.1.div_ceil(n) + 1) * n);
         let scratch_key = ScratchKey { entries, target };
@@ -366,21 +370,20 @@ impl LightVolumes {
         pass.dispatch_workgroups(1, 1, 1);
         drop(pass);
 
-        let depth = t.sight_depth.unwrap_or(t.sink);
         let volumes = VOLUMES.bind(
             device,
             &self.volumes_layout,
-            &[
-                ("params", t.params.into()),
-                ("stream", (&s.stream).into()),
-                ("receivers", (&s.receivers).into()),
-                ("sight_depth", depth.into()),
-            ],
+            &[("params", t.params.into()), ("stream", (&s.stream).into()), ("receivers", (&s.receivers).into())],
         );
+        let sight =
+            t.sight_depth.map(|depth| VOLUMES_SIGHT.bind(device, &self.sight_layout, &[("sight_depth", depth.into())]));
         let mut pass = engine::passes::color_pass(encoder, "gi light volumes", &s.shaded, false);
-        pass.set_pipeline(&self.volumes_pipelines[usize::from(t.sight_depth.is_some())]);
+        pass.set_pipeline(&self.volumes_pipelines[usize::from(sight.is_some())]);
         pass.set_bind_group(0, globals, &[]);
         pass.set_bind_group(1, &volumes, &[]);
+        if let Some(sight) = &sight {
+            pass.set_bind_group(2, sight, &[]);
+        }
         pass.draw_indirect(&s.args, 0);
         drop(pass);
 

@@ -1,5 +1,5 @@
 // The article's "render to vertex buffer": the distribution table's slots of the flux pyramid
-// become the instance stream of the light volumes (light_volumes.wgsl) and its indirect draw
+// become the instance stream of the light volumes (article_volumes.wgsl) and its indirect draw
 // arguments, on the GPU. A coherent slot is one reflection light; an incoherent one is
 // refined up to two levels, and what is still incoherent there is drawn as it is (a base
 // block spanning a fold as its two sides), with all of its flux, so the lights carry every
@@ -42,7 +42,7 @@ struct DrawArgs {
 
 const ENTRY_COARSE: u32 = 0u;
 const ENTRY_FINE: u32 = 1u;
-// Vertices of one light volume: an icosahedron's 20 triangles (light_volumes.wgsl).
+// Vertices of one light volume: an icosahedron's 20 triangles (article_volumes.wgsl).
 const VOLUME_VERTICES: u32 = 60u;
 const VOLUME_EVERYWHERE: f32 = -1.0;
 const GROUP: u32 = 64u;

@@ -1,35 +1,32 @@
 // The article's deferred shading of reflection lights: every light of the instance stream
-// (light_stream.wgsl) is one instance of a light-volume mesh, drawn additively into the
+// (article_stream.wgsl) is one instance of a light-volume mesh, drawn additively into the
 // receivers it can reach, whose positions and normals it reads (the camera G-buffer's, at the
-// receivers' texels: sub_images.wgsl). One indirect draw, whatever the number of lights.
+// receivers' texels: article_sub_images.wgsl). One indirect draw, whatever the number of lights.
 //
 // Interleaved sampling (Segovia et al. 2006): the receivers are split into N×N sub-images,
 // sub-image (i, j) holding every receiver q with q mod N = (i, j), and each light is drawn
-// into the sub-image of its subset only: it shades 1/N² of the receivers. sub_images.wgsl's
+// into the sub-image of its subset only: it shades 1/N² of the receivers. article_sub_images.wgsl's
 // `join` then gives each receiver every subset's light from its neighbours on its surface.
 //
 // A coarse light covers its whole sub-image (a quad); a fine light an icosahedron around the
-// sphere of its volume (see light_stream.wgsl), its back faces only, so each receiver inside
+// sphere of its volume (see article_stream.wgsl), its back faces only, so each receiver inside
 // is shaded once wherever the camera is, and at a fixed depth, so no face is clipped. With
-// `gi.visibility` each fragment marches to its light (visibility.wgsl).
+// `gi.visibility` (`fs_sight`, in place of `fs_main`) each fragment marches the segment from
+// its receiver to its light (visibility.wgsl), as the sight pass does for the cuts' nine
+// receivers a tile.
 #include "common.wgsl"
 #include "gi_common.wgsl"
-#include "sub_image_layout.wgsl"
+#include "article_sub_image_layout.wgsl"
 
 @group(1) @binding(0) var<uniform> params: GiParams;
 @group(1) @binding(1) var<storage, read> stream: array<VolumeLight>;
 // Each receiver's position (as bits) and packed normal (NO_NORMAL: no surface), where its
-// sub-image holds it (sub_images.wgsl).
+// sub-image holds it (article_sub_images.wgsl).
 @group(1) @binding(2) var receivers: texture_2d<u32>;
-// With VISIBILITY: the view depth the march reads (sight_depth.wgsl).
-@group(1) @binding(3) var sight_depth: texture_2d<f32>;
+// `fs_sight`'s: the view depth the march reads (sight_depth.wgsl).
+@group(2) @binding(0) var sight_depth: texture_2d<f32>;
 
 #include "visibility.wgsl"
-
-// Whether light is stopped by the surfaces between (gi.visibility): each fragment marches the
-// segment from its receiver to its light, as the sight pass does for the cuts' nine receivers
-// a tile. A pipeline each way.
-override VISIBILITY: bool = false;
 
 // An icosahedron: 12 vertices on the unit sphere's axes' golden rectangles, 20 faces, each
 // counter-clockwise seen from outside.
@@ -60,14 +57,14 @@ struct VolumeOut {
     @location(3) @interpolate(flat) proxy: vec4f,
     @location(4) @interpolate(flat) proxy_normal: vec3f,
     @location(5) @interpolate(flat) subset: u32,
-    // With VISIBILITY: the light in clip space (`globals.view_proj`).
+    // The light in clip space (`globals.view_proj`), for `fs_sight`.
     @location(6) @interpolate(flat) light_clip: vec4f,
 };
 
 // A point of the camera's clip space, placed in sub-image `s` of the target (the sub-images
 // side by side, N·sub_size each way) where the receivers it falls among are: receiver q is
 // evaluated at view pixel (q + ½ + receiver_offset) of the indirect target and shaded at
-// pixel (q + shift) / N of its sub-image (sub_image_layout.wgsl). Linear in clip space, so it
+// pixel (q + shift) / N of its sub-image (article_sub_image_layout.wgsl). Linear in clip space, so it
 // keeps perspective.
 fn into_sub_image(clip: vec4f, s: u32) -> vec4f {
     let n = f32(sub_side());
@@ -101,9 +98,7 @@ fn vs_main(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> Vo
     out.normal_radius = vec4f(light.normal, light.radius);
     out.flux = light.flux;
     out.subset = light.subset;
-    if VISIBILITY {
-        out.light_clip = globals.view_proj * vec4f(light.position, 1.0);
-    }
+    out.light_clip = globals.view_proj * vec4f(light.position, 1.0);
     out.proxy = vec4f(light.proxy_position, light.proxy_area);
     out.proxy_normal = light.proxy_normal;
     if light.radius < 0.0 {
@@ -119,22 +114,18 @@ fn vs_main(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> Vo
     return out;
 }
 
-// 1 where the receiver at x sees the light at `light` (clip space), else 0; 1 without
-// VISIBILITY.
-fn sees(x: vec3f, light: vec4f) -> f32 {
-    if !VISIBILITY {
-        return 1.0;
-    }
-    return select(0.0, 1.0, clip_segment_seen(globals.view_proj * vec4f(x, 1.0), light));
-}
-
 // The fade of a fine light's volume: whole over its inner half, to nothing at its edge.
 fn fade(distance: f32, radius: f32) -> f32 {
     return clamp(2.0 - 2.0 * distance / radius, 0.0, 1.0);
 }
 
-@fragment
-fn fs_main(in: VolumeOut) -> @location(0) vec4f {
+// A fragment's irradiance from its volume's light, and the receiver it is at.
+struct Shaded {
+    e: vec3f,
+    x: vec3f,
+};
+
+fn shade(in: VolumeOut) -> Shaded {
     let light = VolumeLight(in.position_area.xyz, in.position_area.w, in.normal_radius.xyz, in.normal_radius.w,
         in.flux, in.subset, in.proxy.xyz, in.proxy.w, in.proxy_normal, 0u);
     let p = vec2u(in.clip.xy);
@@ -151,8 +142,7 @@ fn fs_main(in: VolumeOut) -> @location(0) vec4f {
     let x = bitcast<vec3f>(r.xyz);
     let normal = unpack_normal(r.w);
     if light.radius < 0.0 {
-        let e = disc_irradiance(light.flux, light.area, light.position, light.normal, x, normal);
-        return vec4f(e * sees(x, in.light_clip), 0.0);
+        return Shaded(disc_irradiance(light.flux, light.area, light.position, light.normal, x, normal), x);
     }
     let w = fade(length(x - light.proxy_position), light.radius);
     if w <= 0.0 {
@@ -160,7 +150,20 @@ fn fs_main(in: VolumeOut) -> @location(0) vec4f {
     }
     let own = disc_irradiance(light.flux, light.area, light.position, light.normal, x, normal);
     let share = disc_irradiance(light.flux, light.proxy_area, light.proxy_position, light.proxy_normal, x, normal);
-    // (One march, to the light, for both terms: its coarse light lies about it, and a second
-    // march cost the frame a tenth more.)
-    return vec4f(w * (own - share) * sees(x, in.light_clip), 0.0);
+    return Shaded(w * (own - share), x);
+}
+
+@fragment
+fn fs_main(in: VolumeOut) -> @location(0) vec4f {
+    return vec4f(shade(in).e, 0.0);
+}
+
+// With the light stopped where a surface stands between. (One march, to the light, for both
+// of a fine light's terms: its coarse light lies about it, and a second march cost the frame
+// a tenth more.)
+@fragment
+fn fs_sight(in: VolumeOut) -> @location(0) vec4f {
+    let s = shade(in);
+    let seen = select(0.0, 1.0, clip_segment_seen(globals.view_proj * vec4f(s.x, 1.0), in.light_clip));
+    return vec4f(s.e * seen, 0.0);
 }

@@ -1,11 +1,11 @@
-// The receivers of the article's light volumes (light_volumes.wgsl) split into N×N
+// The receivers of the article's light volumes (article_volumes.wgsl) split into N×N
 // sub-images and joined again (interleaved sampling, Segovia et al. 2006).
 //
 // `split`: each receiver of the indirect target is placed on its G-buffer texel as the cuts
 // gather places it (receivers.wgsl; recorded for the temporal pass), and its position and
 // normal are written where its sub-image holds it: sub-image (i, j) of the target holds the
 // receivers q with q mod N = (i, j), at q / N (shifted with the receivers' grid:
-// sub_image_layout.wgsl).
+// article_sub_image_layout.wgsl).
 //
 // `join`: each receiver's irradiance is the sum over the N² subsets of lights of that subset's
 // light here, read from the nearest receivers of the subset's sub-image (the receiver's own
@@ -17,7 +17,7 @@
 #include "common.wgsl"
 #include "gi_common.wgsl"
 #include "receivers.wgsl"
-#include "sub_image_layout.wgsl"
+#include "article_sub_image_layout.wgsl"
 
 @group(1) @binding(0) var<uniform> params: GiParams;
 @group(1) @binding(1) var gbuffer_normal: texture_2d<f32>;

@@ -1,16 +1,19 @@
-//! The view depth the visibility march reads (shaders/gi/sight_depth.wgsl): the G-buffer's,
-//! at half its size each way, R32Float, so the march's scattered loads are small ones. Made
-//! once a frame by the first bounce's gather (cuts) or the light volumes (article), as the
-//! graph image `gi.sight_depth`.
+//! The view depth the sight test marches (shaders/gi/sight_depth.wgsl): the G-buffer's, at
+//! half its size each way, R32Float, so the march's scattered loads are small ones. Made once
+//! a frame with `gi.visibility`, for every bounce and either method.
 
 use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
-use engine::graph::{Handle, Image, PassContext, PassDecl, Read, TextureDesc, Write};
+use engine::graph::{Image, PassContext, PassDecl, Read, TextureDesc, Write};
+use engine::passes::CoreResources;
 use engine::wgpu;
 
+use crate::frame::GiFrame;
 use crate::pipelines::{compute_pipeline, TEXEL_GROUP};
+use crate::resources::GiResources;
+use crate::schedule::GiPass;
 use crate::shader::module;
 
-pub const SHADER: &str = include_str!("../../shaders/gi/sight_depth.wgsl");
+pub const SHADER: &str = include_str!("../../../shaders/gi/sight_depth.wgsl");
 
 /// The sight depth's group 1 (sight_depth.wgsl).
 pub const SIGHT_DEPTH: Group = Group::new(
@@ -28,32 +31,52 @@ fn sight_depth_desc(gbuffer: (u32, u32)) -> TextureDesc {
         .fixed(gbuffer.0.div_ceil(2), gbuffer.1.div_ceil(2))
 }
 
-/// Declares the sight depth `image`, made by the declaring pass, where `visibility`.
-pub fn declare(d: &mut PassDecl<'_>, image: Handle<Image>, visibility: bool) -> Option<Write<Image>> {
-    visibility.then(|| d.create(image, sight_depth_desc(d.size())))
-}
-
-pub struct SightDepth {
+pub struct SightDepthPass {
+    core: CoreResources,
+    gi: GiResources,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
 }
 
-impl SightDepth {
-    pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout) -> Self {
+pub struct SightDepthIo {
+    position: Read<Image>,
+    depth: Write<Image>,
+}
+
+impl SightDepthPass {
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        globals: &wgpu::BindGroupLayout,
+        core: CoreResources,
+        gi: GiResources,
+    ) -> Self {
         let layout = SIGHT_DEPTH.layout(device);
         let module = module(device, "gi sight depth", SHADER);
         let pipeline = compute_pipeline(device, "gi sight depth", &module, "main", &[Some(globals), Some(&layout)]);
-        Self { layout, pipeline }
+        Self { core, gi, layout, pipeline }
+    }
+}
+
+impl GiPass for SightDepthPass {
+    type Io = SightDepthIo;
+
+    fn name(&self) -> &str {
+        "gi_sight_depth"
     }
 
-    /// Records the sight depth (`depth`, as [`declare`]d) from the G-buffer's `position`;
-    /// returns the number of dispatches, one.
-    pub fn record(&self, ctx: &mut PassContext<'_>, position: &Read<Image>, depth: &Write<Image>) -> u32 {
-        let size = ctx.texture(depth).size();
+    fn declare(&self, d: &mut PassDecl<'_>, _: &GiFrame) -> SightDepthIo {
+        SightDepthIo {
+            position: d.read(self.core.gbuffer.position),
+            depth: d.create(self.gi.sight_depth, sight_depth_desc(d.size())),
+        }
+    }
+
+    fn run(&mut self, io: &SightDepthIo, _: &GiFrame, ctx: &mut PassContext<'_>) {
+        let size = ctx.texture(&io.depth).size();
         let group = SIGHT_DEPTH.bind(
             &ctx.gpu.device,
             &self.layout,
-            &[("gbuffer_position", ctx.view(position).into()), ("depth", ctx.view(depth).into())],
+            &[("gbuffer_position", ctx.view(&io.position).into()), ("depth", ctx.view(&io.depth).into())],
         );
         let mut pass = ctx
             .encoder
@@ -62,6 +85,7 @@ impl SightDepth {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(1, &group, &[]);
         pass.dispatch_workgroups(size.width.div_ceil(TEXEL_GROUP), size.height.div_ceil(TEXEL_GROUP), 1);
-        1
+        drop(pass);
+        ctx.count_dispatches(1);
     }
 }
