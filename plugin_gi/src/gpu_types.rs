@@ -198,6 +198,8 @@ pub const GPU_ONLY: &[(&str, &str)] = &[
     ("PlacedReceiver", "a function's value, never in a buffer"),
     ("Sequence", "a function's value, never in a buffer"),
     ("Lanes", "a function's value, never in a buffer"),
+    ("Gathered", "a function's value, never in a buffer"),
+    ("Shaded", "a function's value, never in a buffer"),
     ("DotOut", "stage IO between vertex and fragment shaders"),
 ];
 

@@ -26,10 +26,12 @@
 @group(1) @binding(2) var gbuffer_normal: texture_2d<f32>;
 @group(1) @binding(3) var gbuffer_position: texture_2d<f32>;
 @group(1) @binding(4) var irradiance_out: texture_storage_2d<rgba32float, write>;
-// The cuts, and with VISIBILITY the sight bits after them (`sight_word`, sight.wgsl).
 @group(1) @binding(5) var<storage, read> cuts: array<vec4u>;
 // Where each receiver is evaluated, as the cuts pass found it (receivers.wgsl).
 @group(1) @binding(6) var<storage, read> receiver_texels: array<u32>;
+// The same buffer as `cuts`, read as words: with VISIBILITY, the sight bits after the cuts
+// (`sight_start`, sight.wgsl).
+@group(1) @binding(7) var<storage, read> sight: array<u32>;
 // Further bounces (`main_bounce`): the total of the bounces before, added to the output, and
 // this bounce's irradiance alone, for the next bounce's flux.
 @group(2) @binding(0) var accumulate: texture_2d<f32>;
@@ -43,6 +45,8 @@ override VISIBILITY: bool = false;
 // bits of the four around it, and their bilinear weights.
 var<private> sight_bits: vec4u;
 var<private> sight_mix: vec4f;
+// Where the sight bits begin in `sight`.
+var<private> sight_base: u32;
 
 // `sight_bits` and `sight_mix` for the receiver at tile position p (at x, normal n, where
 // `valid`): bilinear among the four tested receivers around it, of those on its surface only
@@ -148,9 +152,7 @@ fn sequence_sight(s: Sequence, k: u32) -> u32 {
     if !VISIBILITY {
         return 511u;
     }
-    let slot = u32(i32(s.first) + i32(k) * s.step);
-    let word = sight_word(slot, params.indirect_size, table.levels[PYRAMID_LEVELS - 1u]);
-    return cuts[word.x][word.y];
+    return sight[sight_base + u32(i32(s.first) + i32(k) * s.step)];
 }
 
 // The share of a light's irradiance that reaches this invocation's receiver: the sight of it
@@ -280,6 +282,7 @@ fn gather(r: u32, lanes: Lanes, group: vec2u) -> Gathered {
     let counts = workgroupUniformLoad(&cut_size);
     if VISIBILITY {
         place_in_sight(p, x, n.xyz, valid);
+        sight_base = sight_start(params.indirect_size, table.levels[PYRAMID_LEVELS - 1u]);
     }
     let lights = counts.x;
     let centre = bitcast<vec3f>(cuts[base + 1u].xyz);

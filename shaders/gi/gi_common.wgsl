@@ -261,11 +261,11 @@ fn near_slot(base: u32, stride: u32, k: u32) -> u32 {
 
 // With visibility the cuts buffer goes on past every tile's cut with one u32 a slot of them
 // (written by sight.wgsl): which of its tile's nine tested receivers see the light in that
-// slot. The vec4 and the component of slot `slot`'s, for cuts laid out as in `tile_cut`.
-fn sight_word(slot: u32, indirect_size: vec2u, top_level: vec4u) -> vec2u {
+// slot. Where they begin, in u32 words of the buffer, for cuts laid out as in `tile_cut`: slot
+// s's are word `sight_start(…) + s`.
+fn sight_start(indirect_size: vec2u, top_level: vec4u) -> u32 {
     let tiles = (indirect_size + CUT_TILE - 1u) / CUT_TILE;
-    let end = tiles.x * tiles.y * cut_stride(top_level.y * top_level.z);
-    return vec2u(end + slot / 4u, slot % 4u);
+    return 4u * tiles.x * tiles.y * cut_stride(top_level.y * top_level.z);
 }
 
 // Per level of the pyramid: offset into the node buffer, width, height; then (entry

@@ -12,7 +12,7 @@
 @group(1) @binding(1) var<uniform> table: Levels;
 @group(1) @binding(2) var gbuffer_normal: texture_2d<f32>;
 @group(1) @binding(3) var gbuffer_position: texture_2d<f32>;
-// The cuts, and after them the sight bits this pass writes (`sight_word`): which of the nine
+// The cuts, and after them the sight bits this pass writes (`sight_start`): which of the nine
 // receivers see the light in each slot (`points_seeing`).
 @group(1) @binding(4) var<storage, read_write> cuts: array<vec4u>;
 @group(1) @binding(5) var<storage, read> receiver_texels: array<u32>;
@@ -81,18 +81,19 @@ fn main(@builtin(local_invocation_index) i: u32, @builtin(workgroup_id) group: v
     workgroupBarrier();
     let top_level = table.levels[PYRAMID_LEVELS - 1u];
     let cut = tile_cut(group.xy, params.indirect_size, top_level);
+    let start = sight_start(params.indirect_size, top_level);
     let base = cut.x;
     let stride = cut.y;
     let counts = cuts[base].xz;
     let centre = bitcast<vec3f>(cuts[base + 1u].xyz);
     for (var k = i; k < counts.x; k += 64u) {
         let slot = base + 2u + k;
-        let word = sight_word(slot, params.indirect_size, top_level);
-        cuts[word.x][word.y] = points_seeing(unpack_cut_light(cuts[slot], centre).position);
+        let word = start + slot;
+        cuts[word / 4u][word % 4u] = points_seeing(unpack_cut_light(cuts[slot], centre).position);
     }
     for (var k = i; k < counts.y; k += 64u) {
         let slot = near_slot(base, stride, k);
-        let word = sight_word(slot, params.indirect_size, top_level);
-        cuts[word.x][word.y] = points_seeing(unpack_cut_light(cuts[slot], centre).position);
+        let word = start + slot;
+        cuts[word / 4u][word % 4u] = points_seeing(unpack_cut_light(cuts[slot], centre).position);
     }
 }

@@ -143,8 +143,7 @@ impl RenderPass for PresentPass {
             && ctx.frame.size != (w, h)
             && matches!(io.kind, OutputView::Radiance | OutputView::Color);
         // Upsampling through the sampler's bilinear filter costs one sample a pixel instead of
-        // four loads (on llvmpipe at 1280×720, 12.3 ms against 19.4): formats that cannot be
-        // filtered (Rgba32Float) interpolate by hand.
+        // four loads: formats that cannot be filtered (Rgba32Float) interpolate by hand.
         let filtered = upsample
             && source
                 .format()

@@ -33,6 +33,7 @@ pub const GATHER: Group = Group::new(
         B::storage_texture("irradiance_out", IRRADIANCE_FORMAT),
         B::storage("cuts"),
         B::storage("receiver_texels"),
+        B::storage("sight"),
     ],
 );
 /// A further bounce's group 2 (`main_bounce`).
@@ -167,6 +168,8 @@ impl GiPass for GatherPass {
                 ("irradiance_out", ctx.view(&io.irradiance).into()),
                 ("cuts", ctx.buffer(&io.cuts).into()),
                 ("receiver_texels", ctx.buffer(&io.receivers).into()),
+                // The sight bits lie after the cuts (crate::cuts_layout).
+                ("sight", ctx.buffer(&io.cuts).into()),
             ],
         );
         let bounce = match (&io.bounce, &self.bounce_layout) {
