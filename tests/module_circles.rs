@@ -88,6 +88,7 @@ each_member! {
     physics_has_no_import_circle: "engine/physics",
     audio_has_no_import_circle: "engine/audio",
     bounds_has_no_import_circle: "engine/bounds",
+    occupancy_has_no_import_circle: "engine/occupancy",
     plugin_gi_has_no_import_circle: "plugin_gi",
     gi_reference_has_no_import_circle: "plugin_gi/reference",
     game_has_no_import_circle: "game",
