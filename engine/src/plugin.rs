@@ -5,6 +5,7 @@ use crate::globals::CoreLayouts;
 use crate::gpu::Gpu;
 use crate::graph::{Buffer, Handle, History, Image, PassOrder, RenderGraph, RenderPass, Stage};
 use crate::passes::{CoreResources, OutputView};
+use crate::scene::Scene;
 
 pub trait Plugin {
     fn name(&self) -> &str;
@@ -22,6 +23,10 @@ pub struct ViewEntry {
 pub struct PluginContext<'a> {
     pub gpu: &'a Gpu,
     pub layouts: &'a CoreLayouts,
+    /// The level the renderer draws: its static meshes (world space), materials and lights. A
+    /// renderer is made again for another level and on a live reload, so this is the level's
+    /// for the plugin's whole life.
+    pub scene: &'a Scene,
     pub(crate) core: CoreResources,
     pub(crate) graph: &'a mut RenderGraph,
     pub(crate) views: &'a mut Vec<ViewEntry>,

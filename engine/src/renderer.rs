@@ -68,7 +68,7 @@ impl Renderer {
             view("lamp_depth", core.lamp.position, OutputView::Depth),
         ];
         for plugin in &mut plugins {
-            let mut ctx = PluginContext { gpu, layouts: &layouts, core, graph: &mut graph, views: &mut views };
+            let mut ctx = PluginContext { gpu, layouts: &layouts, scene, core, graph: &mut graph, views: &mut views };
             plugin.build(&mut ctx);
             log::info!("plugin '{}' built", plugin.name());
         }

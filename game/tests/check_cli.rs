@@ -71,6 +71,27 @@ fn the_shipped_level_passes() {
 }
 
 #[test]
+fn a_level_too_large_for_the_gis_occupancy_grid_is_reported_not_refused() {
+    // A floor 600 m across fits only with coarser voxels; a triangle a million metres across
+    // fits no grid at all. Neither keeps the level from being played.
+    let dir = scratch("grid_size");
+    let obj = |path: &Path, far: f32| {
+        let text = format!("v 0 0 0\nv {far} 0 0\nv 0 0 {far}\nv 0 100 0\nv 1 100 0\nv 0 100 1\nf 1 2 3\nf 4 5 6\n");
+        std::fs::write(path, text).unwrap();
+    };
+    let (wide, huge) = (dir.join("wide.obj"), dir.join("huge.obj"));
+    obj(&wide, 600.0);
+    obj(&huge, 1.0e6);
+    let lines = printed(&headlamp(&["check", wide.to_str().unwrap()]));
+    has(&lines, &["wide.obj: warning: the GI's occupancy grid takes", "cm voxels to fit 64 MiB (the finest is 5 cm)"]);
+    let out = headlamp(&["check", huge.to_str().unwrap()]);
+    let lines = printed(&out);
+    has(&lines, &["huge.obj: warning: the GI cannot see this level's walls where the camera does not", "1000000"]);
+    // (Its spawn floats over nothing: that error is the level's, not the grid's.)
+    assert!(!lines.iter().any(|l| l.contains(": error: the GI")), "{lines:#?}");
+}
+
+#[test]
 fn a_level_toml_typo_is_placed_at_its_line_and_column() {
     let dir = scratch("typo");
     two_rooms(&dir, &[], &format!("{LEVEL}\n[headlamp]\n  powr = 3.0\n"), json!({}));

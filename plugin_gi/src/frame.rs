@@ -114,6 +114,11 @@ impl GiFrame {
         self.settings.visibility == 1
     }
 
+    /// … those the camera does not see too, the level's walls (its voxels).
+    pub fn world_sight(&self) -> bool {
+        self.visibility() && self.settings.world_sight == 1
+    }
+
     /// The bounces computed: `gi.bounces` with the cuts' method and the lamp on the head,
     /// else the first alone (the article's method is its one bounce, see docs/gi.md; a
     /// further bounce's senders are the camera's view, lit by the bounce before).

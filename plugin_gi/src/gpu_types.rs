@@ -162,6 +162,20 @@ engine::gpu_struct! {
     }
 }
 
+engine::gpu_struct! {
+    /// A level's occupancy grid, as the world sight test reads it (world_sight.wgsl).
+    #[repr(C)]
+    #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+    pub struct WorldGrid {
+        /// The grid's lowest corner and a voxel's side, metres.
+        pub origin: [f32; 3],
+        pub voxel: f32,
+        /// Its size in blocks of occupancy::BLOCK³ voxels.
+        pub blocks: [u32; 3],
+        pub pad: u32,
+    }
+}
+
 /// The twins of the structs in the GI's shaders (shaders/gi/*.wgsl).
 pub fn twins() -> Vec<Layout> {
     vec![
@@ -172,6 +186,7 @@ pub fn twins() -> Vec<Layout> {
         SenderRange::layout(),
         Probe::layout(),
         TemporalParams::layout(),
+        WorldGrid::layout(),
     ]
 }
 

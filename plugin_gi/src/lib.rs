@@ -25,6 +25,7 @@ mod settings;
 mod shader;
 mod shared;
 pub mod shared_constants;
+mod world_grid;
 
 use engine::graph::{PassOrder, Stage};
 use engine::passes::OutputView;
@@ -66,6 +67,7 @@ impl Plugin for GiPlugin {
         let bounces = GiSettings::FIELDS.iter().find(|f| f.name == "bounces").map_or(1, |f| f.max as u32);
         let (core, gi, handle) = (*ctx.core(), resources::GiResources::register(ctx, bounces), self.handle.clone());
         let lanes = SumLanes::for_device(ctx.gpu);
+        let world = std::rc::Rc::new(world_grid::WorldGrid::new(device, ctx.scene));
         let h = &handle;
         add(ctx, h, When::ALWAYS, GiParamsPass::first(gi.params()));
         add(ctx, h, When::ALWAYS, PyramidPass::new(device, globals, 1, core, gi.clone()));
@@ -74,7 +76,7 @@ impl Plugin for GiPlugin {
         // see, and their sum …
         let cuts = When::method(Method::Cuts);
         add(ctx, h, cuts, CutsPass::new(device, globals, 1, core, gi.clone()));
-        add(ctx, h, cuts.with_visibility(), SightPass::new(device, globals, 1, core, gi.clone()));
+        add(ctx, h, cuts.with_visibility(), SightPass::new(device, globals, 1, core, gi.clone(), world.clone()));
         add(ctx, h, cuts, GatherPass::new(device, globals, 1, lanes, core, gi.clone()));
         // … or the article's light volumes, which make the same irradiance.
         let article = ArticlePass::new(ctx.gpu, globals, core, gi.clone());
@@ -88,7 +90,12 @@ impl Plugin for GiPlugin {
             }
             add(ctx, h, When::bounce(k), PyramidPass::new(device, globals, k, core, gi.clone()));
             add(ctx, h, When::bounce(k), CutsPass::new(device, globals, k, core, gi.clone()));
-            add(ctx, h, When::bounce(k).with_visibility(), SightPass::new(device, globals, k, core, gi.clone()));
+            add(
+                ctx,
+                h,
+                When::bounce(k).with_visibility(),
+                SightPass::new(device, globals, k, core, gi.clone(), world.clone()),
+            );
             add(ctx, h, When::bounce(k), GatherPass::new(device, globals, k, lanes, core, gi.clone()));
         }
         // The total of every bounce, blended over frames.

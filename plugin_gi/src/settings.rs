@@ -62,6 +62,10 @@ declare::settings! {
         /// it the coarse light carries its flux. Larger is closer to every light drawn
         /// everywhere, and slower (100 is that, in any room).
         volume_reach: f32 = 2.5, 1.0..=100.0, "article method: a fine light's volume, in sizes of the coarse light it refines (beyond, the coarse light carries its flux)";
+        /// With `visibility`: a segment the camera's depth finds clear is also marched through
+        /// the level's surfaces as voxels, built when the level loads, so walls the camera
+        /// does not see stop light too. What moves stops light through the camera's depth only.
+        world_sight: u32 = 1, 0..=1, "with visibility, light is also stopped by the level's walls the camera does not see (a march through its voxels)";
     }
 }
 
@@ -277,12 +281,13 @@ mod tests {
             "light_budget",
             "article_interleave",
             "volume_reach",
+            "world_sight",
         ];
         assert_eq!(names, order);
         assert_eq!(
             GiSettings::FIELDS.iter().filter(|f| f.integer).count(),
-            7,
-            "bounces, interleave, min_rows, visibility, method, light_budget, article_interleave"
+            8,
+            "bounces, interleave, min_rows, visibility, method, light_budget, article_interleave, world_sight"
         );
         // Compared as f32: an f32 setting holds the f64 bound to f32 precision.
         let get = |s: &GiSettings, name| s.get(name).map(|v| v as f32);

@@ -7,6 +7,7 @@ pub const INCLUDES: &[(&str, &str)] = &[
     ("gi_common.wgsl", include_str!("../../shaders/gi/gi_common.wgsl")),
     ("receivers.wgsl", include_str!("../../shaders/gi/receivers.wgsl")),
     ("visibility.wgsl", include_str!("../../shaders/gi/visibility.wgsl")),
+    ("world_sight.wgsl", include_str!("../../shaders/gi/world_sight.wgsl")),
     ("article_sub_image_layout.wgsl", include_str!("../../shaders/gi/article_sub_image_layout.wgsl")),
     // The bodies of the pyramid and the sum, each included by the files of its entry points
     // (crate::passes::pyramid, crate::passes::gather).

@@ -4,7 +4,10 @@
 // classes' slots and its near list) is tested along the segments to those receivers
 // (visibility.wgsl) and gets nine bits. The sum weighs a light's irradiance at each receiver
 // by them, bilinearly within the quarter of the tile it lies in: at most nine marches a light
-// and tile instead of one for every receiver that evaluates it.
+// and tile instead of one for every receiver that evaluates it. With WORLD (`gi.world_sight`
+// 1) a segment the screen cannot vouch for (off the screen, or behind what the camera sees)
+// is marched through the level's surfaces as voxels (world_sight.wgsl), which sees walls the
+// camera does not; what moves (crawlers, the thrown lamp) is in the screen's depth only.
 #include "common.wgsl"
 #include "gi_common.wgsl"
 
@@ -18,51 +21,71 @@
 @group(1) @binding(5) var<storage, read> receiver_texels: array<u32>;
 // The view depth to march, at half the G-buffer's size (sight_depth.wgsl).
 @group(1) @binding(6) var sight_depth: texture_2d<f32>;
+// The level's surfaces as voxels (plugin_gi/src/world_grid.rs).
+@group(2) @binding(0) var<uniform> world: WorldGrid;
+@group(2) @binding(1) var<storage, read> world_bits: array<u32>;
+@group(2) @binding(2) var<storage, read> world_distances: array<u32>;
 
 #include "visibility.wgsl"
+#include "world_sight.wgsl"
 
-// The corners among them (point i = x + 3y, bit i of `points_seeing`), and the points
-// between them.
-const CORNER_POINTS = array<u32, 4>(0u, 2u, 6u, 8u);
+// Whether segments are also marched through the level's voxels (`gi.visibility` 2).
+override WORLD: bool = false;
+// A segment's ends leave their surfaces along their normals by this many voxels, and the
+// march leaves out as many at each end: the voxels of the surfaces they lie on.
+const WORLD_LIFT: f32 = 1.5;
+
+// The points in the order they are asked (point i = x + 3y, bit i of `points_seeing`): the
+// corners, then the points between them.
+const ORDER = array<u32, 9>(0u, 2u, 6u, 8u, 1u, 3u, 4u, 5u, 7u);
 const CORNERS: u32 = 0x145u;
-const BETWEEN_POINTS = array<u32, 5>(1u, 3u, 4u, 5u, 7u);
 const BETWEEN: u32 = 0x0bau;
 
-// Those receivers in clip space (`globals.view_proj`), w 0 where there is no surface.
+// Those receivers in clip space (`globals.view_proj`), w 0 where there is no surface, and in
+// the world, lifted off their surfaces (WORLD_LIFT).
 var<workgroup> points: array<vec4f, 9>;
+var<workgroup> world_points: array<vec3f, 9>;
 
-// Point i's answer for a light at `light` (clip space): its bit where it sees it (x) and
-// where it has a surface to be asked (y).
-fn point_sees(i: u32, light: vec4f) -> vec2u {
+// Point i's answer for a light at `light` (clip space; lifted off its surface in the world,
+// `lifted`): its bit where it sees it (x) and where it has a surface to be asked (y).
+fn point_sees(i: u32, light: vec4f, lifted: vec3f) -> vec2u {
     let c = points[i];
     if c.w <= 0.0 {
         return vec2u(0u);
     }
-    return vec2u(u32(clip_segment_seen(c, light)), 1u) << vec2u(i);
+    // Where the screen cannot tell, the level's voxels do.
+    let screen = clip_segment_sight(c, light);
+    var seen = screen != SIGHT_BLOCKED;
+    if WORLD && screen == SIGHT_UNKNOWN {
+        seen = world_segment_clear(world_points[i], lifted, WORLD_LIFT * world.voxel);
+    }
+    return vec2u(u32(seen), 1u) << vec2u(i);
 }
 
 // Which of the points see the light at p (bit i for point i): the corners first, the others
 // only where the corners disagree (where they agree, a surface between would be narrower
 // than the tile: the others take their answer). A point without a surface sees it where
-// another point does (or where none has a surface).
-fn points_seeing(p: vec3f) -> u32 {
-    let light = globals.view_proj * vec4f(p, 1.0);
+// another point does (or where none has a surface). (One loop, whose length is known only
+// once the corners have answered, so that a CPU device's compiler makes one copy of the
+// marches, not one for each point.)
+fn points_seeing(l: CutLight) -> u32 {
+    let light = globals.view_proj * vec4f(l.position, 1.0);
+    let lifted = l.position + l.normal * (WORLD_LIFT * world.voxel);
     var answer = vec2u(0u);
-    for (var k = 0u; k < 4u; k++) {
-        answer |= point_sees(CORNER_POINTS[k], light);
+    var asked = 4u;
+    for (var k = 0u; k < asked; k++) {
+        answer |= point_sees(ORDER[k], light, lifted);
+        let corners = answer.x & answer.y & CORNERS;
+        if k == 3u && corners != 0u && corners != (answer.y & CORNERS) {
+            asked = 9u;
+        }
     }
     var seen = answer.x;
     var valid = answer.y;
-    let corners = seen & valid & CORNERS;
-    if corners == 0u || corners == (valid & CORNERS) {
+    if asked == 4u {
+        let corners = seen & valid & CORNERS;
         valid |= BETWEEN;
         seen |= select(0u, BETWEEN, corners != 0u);
-    } else {
-        for (var k = 0u; k < 5u; k++) {
-            answer |= point_sees(BETWEEN_POINTS[k], light);
-        }
-        seen = answer.x;
-        valid = answer.y;
     }
     let others = select(0u, 511u, seen != 0u || valid == 0u);
     return seen | (others & ~valid & 511u);
@@ -74,9 +97,11 @@ fn main(@builtin(local_invocation_index) i: u32, @builtin(workgroup_id) group: v
         let at = vec2u(SIGHT_AT[i % 3u], SIGHT_AT[i / 3u]);
         let q = min(group.xy * CUT_TILE + at, params.indirect_size - 1u);
         let g = unpack_texel(receiver_texels[q.y * params.indirect_size.x + q.x]);
-        let valid = textureLoad(gbuffer_normal, g, 0).w > 0.0;
-        let clip = globals.view_proj * vec4f(textureLoad(gbuffer_position, g, 0).xyz, 1.0);
-        points[i] = select(vec4f(0.0), clip, valid);
+        let normal = textureLoad(gbuffer_normal, g, 0);
+        let valid = normal.w > 0.0;
+        let x = textureLoad(gbuffer_position, g, 0).xyz;
+        points[i] = select(vec4f(0.0), globals.view_proj * vec4f(x, 1.0), valid);
+        world_points[i] = x + normal.xyz * (WORLD_LIFT * world.voxel);
     }
     workgroupBarrier();
     let top_level = table.levels[PYRAMID_LEVELS - 1u];
@@ -86,14 +111,10 @@ fn main(@builtin(local_invocation_index) i: u32, @builtin(workgroup_id) group: v
     let stride = cut.y;
     let counts = cuts[base].xz;
     let centre = bitcast<vec3f>(cuts[base + 1u].xyz);
-    for (var k = i; k < counts.x; k += 64u) {
-        let slot = base + 2u + k;
+    // The classes' slots, then the near list.
+    for (var k = i; k < counts.x + counts.y; k += 64u) {
+        let slot = select(near_slot(base, stride, k - counts.x), base + 2u + k, k < counts.x);
         let word = start + slot;
-        cuts[word / 4u][word % 4u] = points_seeing(unpack_cut_light(cuts[slot], centre).position);
-    }
-    for (var k = i; k < counts.y; k += 64u) {
-        let slot = near_slot(base, stride, k);
-        let word = start + slot;
-        cuts[word / 4u][word % 4u] = points_seeing(unpack_cut_light(cuts[slot], centre).position);
+        cuts[word / 4u][word % 4u] = points_seeing(unpack_cut_light(cuts[slot], centre));
     }
 }

@@ -14,10 +14,18 @@ const VISIBILITY_STEP_TEXELS: f32 = 6.0;
 // thinner than a wall, thicker than the space behind a pillar would be a guess either way.
 const VISIBILITY_THICKNESS: f32 = 1.0;
 
-// Whether the segment between two points given in clip space (`globals.view_proj` of each:
-// the points of a segment are linear in clip space, so its ends are projected once) passes
-// no surface the camera sees.
-fn clip_segment_seen(a: vec4f, b: vec4f) -> bool {
+// What the screen knows of a segment (`clip_segment_sight`): a surface the camera sees stands
+// between; every point tested lies in front of what the camera sees there, or on it, in the
+// space the camera sees to be empty; or neither, some point off the screen or deep behind a
+// surface, where the screen knows nothing.
+const SIGHT_BLOCKED: u32 = 0u;
+const SIGHT_CLEAR: u32 = 1u;
+const SIGHT_UNKNOWN: u32 = 2u;
+
+// What the screen knows of the segment between two points given in clip space
+// (`globals.view_proj` of each: the points of a segment are linear in clip space, so its ends
+// are projected once).
+fn clip_segment_sight(a: vec4f, b: vec4f) -> u32 {
     let size = vec2f(textureDimensions(sight_depth));
     var steps = VISIBILITY_STEPS;
     if a.w > 0.0 && b.w > 0.0 {
@@ -26,19 +34,29 @@ fn clip_segment_seen(a: vec4f, b: vec4f) -> bool {
     }
     // A step's own change of depth can carry it that far behind a surface it crosses.
     let thickness = max(VISIBILITY_THICKNESS, 2.0 * abs(b.w - a.w) / f32(steps));
+    var sight = SIGHT_CLEAR;
     for (var k = 0u; k < steps; k++) {
         let clip = mix(a, b, (f32(k) + 0.5) / f32(steps));
         let ndc = clip.xy / clip.w;
         if clip.w <= 0.0 || any(abs(ndc) >= vec2f(1.0)) {
+            sight = SIGHT_UNKNOWN;
             continue;
         }
         let texel = vec2i((ndc * vec2f(0.5, -0.5) + 0.5) * size);
         let seen = textureLoad(sight_depth, texel, 0).x;
-        // (clip.w is the point's view depth.)
+        // (clip.w is the point's view depth; 0 seen: nothing there, empty all the way.)
         let behind = clip.w - seen;
-        if seen > 0.0 && behind > 0.02 * clip.w && behind < thickness {
-            return false;
+        if seen > 0.0 && behind > 0.02 * clip.w {
+            if behind < thickness {
+                return SIGHT_BLOCKED;
+            }
+            sight = SIGHT_UNKNOWN;
         }
     }
-    return true;
+    return sight;
+}
+
+// Whether the segment passes no surface the camera sees.
+fn clip_segment_seen(a: vec4f, b: vec4f) -> bool {
+    return clip_segment_sight(a, b) != SIGHT_BLOCKED;
 }

@@ -33,7 +33,26 @@ pub fn check_loaded(level: &Level) -> Vec<Diagnostic> {
     let mut found: Vec<Diagnostic> =
         level.warnings.iter().map(|w| Diagnostic::warning(&w.path, w.at, w.message.clone())).collect();
     found.extend(gameplay::check(level));
+    found.extend(occupancy_grid(level));
     found
+}
+
+/// What the GI's world-space visibility makes of the level: a grid coarser than its finest,
+/// or none (light then passes the walls the camera does not see).
+fn occupancy_grid(level: &Level) -> Option<Diagnostic> {
+    let limits = occupancy::Limits::default();
+    let message = match occupancy::Occupancy::of_scene(&level.scene, limits) {
+        Err(e) => format!("the GI cannot see this level's walls where the camera does not: {e}"),
+        Ok(grid) if grid.coarsened => format!(
+            "the GI's occupancy grid takes {:.0} cm voxels to fit {} MiB (the finest is {:.0} cm): light is \
+             stopped up to a voxel from surfaces",
+            grid.voxel * 100.0,
+            limits.max_bytes >> 20,
+            limits.finest_voxel * 100.0
+        ),
+        Ok(_) => return None,
+    };
+    Some(Diagnostic::warning(&level.scene_path, None, message))
 }
 
 /// A load's error as a finding.

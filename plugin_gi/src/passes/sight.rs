@@ -3,16 +3,19 @@
 //! to weigh each light by. One workgroup a tile.
 
 use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
+use std::rc::Rc;
+
 use engine::graph::{Buffer, Image, PassContext, PassDecl, Read, Write};
 use engine::passes::CoreResources;
 use engine::wgpu;
 
 use crate::cuts_layout::CutsLayout;
 use crate::frame::GiFrame;
-use crate::pipelines::compute_pipeline;
+use crate::pipelines::compute_pipeline_with;
 use crate::resources::GiResources;
 use crate::schedule::GiPass;
 use crate::shader::module;
+use crate::world_grid::{WorldGrid, WORLD};
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/sight.wgsl");
 
@@ -31,7 +34,8 @@ pub const SIGHT: Group = Group::new(
 );
 
 /// Where its group is declared.
-pub const BINDINGS: &[WgslGroup] = &[WgslGroup::new("gi/sight.wgsl", 1, &SIGHT)];
+pub const BINDINGS: &[WgslGroup] =
+    &[WgslGroup::new("gi/sight.wgsl", 1, &SIGHT), WgslGroup::new("gi/sight.wgsl", 2, &WORLD)];
 
 /// Tests bounce `bounce`'s cuts (1: the headlamp's).
 pub struct SightPass {
@@ -40,7 +44,9 @@ pub struct SightPass {
     core: CoreResources,
     gi: GiResources,
     layout: wgpu::BindGroupLayout,
-    pipeline: wgpu::ComputePipeline,
+    world: Rc<WorldGrid>,
+    /// Through the camera's depth, and through the level's voxels too (the shader's WORLD).
+    pipelines: [wgpu::ComputePipeline; 2],
 }
 
 pub struct SightIo {
@@ -52,6 +58,7 @@ pub struct SightIo {
     depth: Read<Image>,
     cuts: Write<Buffer>,
     layout: CutsLayout,
+    world: bool,
 }
 
 impl SightPass {
@@ -61,12 +68,17 @@ impl SightPass {
         bounce: u32,
         core: CoreResources,
         gi: GiResources,
+        world: Rc<WorldGrid>,
     ) -> Self {
         let layout = SIGHT.layout(device);
         let module = module(device, "gi sight", SHADER);
-        let pipeline = compute_pipeline(device, "gi sight", &module, "main", &[Some(globals), Some(&layout)]);
+        let layouts = [Some(globals), Some(&layout), Some(&world.layout)];
+        let pipelines = [false, true].map(|on| {
+            let constants = [("WORLD", f64::from(u8::from(on)))];
+            compute_pipeline_with(device, "gi sight", &module, "main", &layouts, &constants)
+        });
         let name = if bounce == 1 { "gi_sight".to_owned() } else { format!("gi_bounce{bounce}_sight") };
-        Self { name, bounce, core, gi, layout, pipeline }
+        Self { name, bounce, core, gi, layout, world, pipelines }
     }
 }
 
@@ -88,6 +100,7 @@ impl GiPass for SightPass {
             depth: d.read(self.gi.sight_depth),
             cuts: d.write(own.cuts),
             layout: frame.of_bounce(self.bounce).1,
+            world: frame.world_sight(),
         }
     }
 
@@ -109,8 +122,9 @@ impl GiPass for SightPass {
             .encoder
             .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("gi sight"), timestamp_writes: None });
         pass.set_bind_group(0, ctx.frame.globals, &[]);
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(&self.pipelines[usize::from(io.world)]);
         pass.set_bind_group(1, &group, &[]);
+        pass.set_bind_group(2, &self.world.group, &[]);
         pass.dispatch_workgroups(io.layout.tiles.0, io.layout.tiles.1, 1);
         drop(pass);
         ctx.count_dispatches(1);
