@@ -60,14 +60,20 @@ bounds::tolerance! {
     CELLAR_ERROR: at_most 0.08, measured 0.0778
 }
 bounds::tolerance! {
-    /// The lamp set down in the corridor by the red/green room's wall, seen from inside the
-    /// room and from its doorway, where the camera sees neither the lit floor nor the wall:
-    /// the room's light beyond the reference's ÷ the lit corridor's mean (the goal: 1 %).
-    ROOM_LEAK: at_most 0.01, measured -0.0015, wider "the goal's 1 %: the room gets a little less light than the reference, so its worst is below zero"
+    /// A lamp set down by a wall, the room behind it seen where the camera sees neither the lit
+    /// floor nor the wall (the Cellar's red/green room from inside and from its doorway, both
+    /// methods; the Gallery's red room; the Hall's crypt): the room's light beyond the
+    /// reference's ÷ the lit mean (the goal: 1 %).
+    ROOM_LEAK: at_most 0.01, measured 5.2e-6, wider "the goal's 1 %: the world sight leaves the rooms at or a little below the reference, so its worst is near zero"
 }
 bounds::tolerance! {
-    /// The same through the screen's depth alone (`gi.world_sight` 0): the leak the world sight
-    /// stops.
+    /// The Gallery's case through the screen's depth alone (`gi.world_sight` 0): the leak the
+    /// world sight stops.
+    GALLERY_WITHOUT: at_least 0.02, measured 0.0261
+}
+bounds::tolerance! {
+    /// The Cellar's and the Hall's cases through the screen's depth alone (`gi.world_sight` 0):
+    /// the leak the world sight stops.
     ROOM_WITHOUT: at_least 0.03, measured 0.0518
 }
 bounds::tolerance! {
@@ -165,114 +171,132 @@ fn a_lamp_set_down_by_a_wall_lights_nothing_in_the_room_behind_it() {
 /// The red/green room's floor plan (levels/generator/src/cellar.rs): x and z, metres.
 const RED_GREEN_ROOM: ([f32; 2], [f32; 2]) = ([-7.4, -1.4], [-10.0, -4.0]);
 
-#[test]
-fn a_lamp_set_down_by_a_wall_lights_nothing_in_the_room_behind_it_seen_from_inside() {
-    let gpu = Gpu::lavapipe().unwrap();
-    let level = engine::scene::load_level(&game::default_level()).unwrap();
-    let lamp = |mut v: ViewState| {
-        v.headlamp.detach_looking_at(Vec3::new(0.0, 2.6, -5.0), Vec3::new(-0.4, 0.0, -5.2));
+/// A lamp set down by a wall, and views of the room behind it where the camera sees neither
+/// the lit floor nor the wall.
+struct RoomBehind {
+    level: &'static str,
+    /// The lamp: where it stands, what it points at.
+    lamp: (Vec3, Vec3),
+    /// A view of the lit floor from the lamp's side: its lit surfaces' mean is what a leak is
+    /// counted against.
+    lit: (Vec3, Vec3),
+    /// The room behind the wall (x and z, metres), and views of it.
+    room: ([f32; 2], [f32; 2]),
+    views: &'static [(&'static str, [f32; 3], [f32; 3])],
+}
+
+/// For each view of `case` and each of `methods`: the room's light beyond `reference_vis`'s ÷
+/// the lit mean, with the world sight and through the screen alone.
+fn room_leaks(gpu: &Gpu, case: &RoomBehind, methods: &[(&str, GiSettings)]) -> Vec<(String, f64, f64)> {
+    let levels = game::default_level().parent().expect("levels/").to_path_buf();
+    let level = engine::scene::load_level(&levels.join(case.level)).unwrap();
+    let view = |(eye, target): (Vec3, Vec3)| {
+        let mut v = initial_view(&level, &ViewOverrides { look: Some((eye, target)), fov_y: None });
+        v.headlamp.detach_looking_at(case.lamp.0, case.lamp.1);
         v
     };
-    let view =
-        |eye: Vec3, target: Vec3| lamp(initial_view(&level, &ViewOverrides { look: Some((eye, target)), fov_y: None }));
-    let mut reference = WorldReference::new(&gpu, &level.scene).unwrap().with_visibility();
+    let mut reference = WorldReference::new(gpu, &level.scene).unwrap().with_visibility();
     let lum = |p: &image::Rgba<f32>| (p[0] + p[1] + p[2]) / 3.0;
     let mean = |img: &image::Rgba32FImage, mask: &[bool]| {
         let (sum, n) = img.pixels().zip(mask).filter(|(_, &m)| m).fold((0.0, 0), |(s, n), (p, _)| (s + lum(p), n + 1));
         sum / n as f32
     };
-    // The lit corridor, from further along it: its lit surfaces' mean is what a leak is
-    // counted against.
-    let corridor = view(Vec3::new(1.0, 1.7, -1.5), Vec3::new(-0.4, 0.3, -5.2));
-    let receivers = reference.receivers(&gpu, &corridor, REFERENCE).unwrap();
-    let exact = reference.evaluate(&corridor, REFERENCE, &receivers, None, DEFAULT_MAX_EDGE).image;
+    let lit_view = view(case.lit);
+    let receivers = reference.receivers(gpu, &lit_view, REFERENCE).unwrap();
+    let exact = reference.evaluate(&lit_view, REFERENCE, &receivers, None, DEFAULT_MAX_EDGE).image;
     let brightest = bounds::worst(exact.pixels().map(|p| f64::from(lum(p)))) as f32;
     let lit: Vec<bool> = exact.pixels().map(|p| lum(p) > 1e-2 * brightest).collect();
-    bounds::assert(bounds::at_least("lit pixels of the corridor", lit.iter().filter(|&&m| m).count() as f64, 2001.0));
+    let lit_pixels = lit.iter().filter(|&&m| m).count() as f64;
+    bounds::assert(bounds::at_least(format!("{}: lit pixels", case.level), lit_pixels, 2001.0));
     let lit_mean = mean(&exact, &lit);
-    let ([x0, x1], [z0, z1]) = RED_GREEN_ROOM;
-    let inside = [
-        ("inside, facing away from the corridor", view(Vec3::new(-2.0, 1.6, -5.5), Vec3::new(-7.4, 2.0, -5.0))),
-        ("in the doorway, looking in", view(Vec3::new(-1.2, 1.6, -7.0), Vec3::new(-6.0, 1.0, -8.5))),
-    ];
-    let screen = GiSettings { world_sight: 0, ..GiSettings::default() };
-    for (name, v) in inside {
-        let receivers = reference.receivers(&gpu, &v, REFERENCE).unwrap();
+    let ([x0, x1], [z0, z1]) = case.room;
+    let mut leaks = Vec::new();
+    for &(name, eye, target) in case.views {
+        let v = view((Vec3::from(eye), Vec3::from(target)));
+        let receivers = reference.receivers(gpu, &v, REFERENCE).unwrap();
         let exact = reference.evaluate(&v, REFERENCE, &receivers, None, DEFAULT_MAX_EDGE).image;
         let room: Vec<bool> = receivers
             .iter()
             .map(|r| r.normal != Vec3::ZERO && (x0..x1).contains(&r.position.x) && (z0..z1).contains(&r.position.z))
             .collect();
         let pixels = room.iter().filter(|&&m| m).count() as f64;
-        bounds::assert(bounds::at_least(format!("{name}: the room's pixels"), pixels, 3001.0));
+        bounds::assert(bounds::at_least(format!("{}, {name}: the room's pixels", case.level), pixels, 3001.0));
         let truth = mean(&exact, &room);
-        let leak = |settings| f64::from((mean(&indirect(&gpu, &level.scene, &v, settings), &room) - truth) / lit_mean);
-        let (with, without) = (leak(GiSettings::default()), leak(screen.clone()));
-        println!(
-            "{name}: the room {:+.2} % of the lit mean beyond the reference's {:.2} % (screen sight alone {:+.2} %)",
-            100.0 * with,
-            100.0 * truth / lit_mean,
-            100.0 * without
-        );
-        bounds::assert_all([
-            ROOM_LEAK.check(format!("{name}: the room beyond the reference ÷ the lit mean"), with),
-            ROOM_WITHOUT.check(format!("{name}: the same through the screen's depth alone"), without),
-        ]);
+        let leak = |settings| f64::from((mean(&indirect(gpu, &level.scene, &v, settings), &room) - truth) / lit_mean);
+        for (method, settings) in methods {
+            let screen = GiSettings { world_sight: 0, ..settings.clone() };
+            let (with, without) = (leak(settings.clone()), leak(screen));
+            let label = format!("{}, {name}, {method}", case.level);
+            println!(
+                "{label}: the room {:+.2} % of the lit mean beyond the reference's {:.2} % (screen sight alone {:+.2} %)",
+                100.0 * with,
+                100.0 * truth / lit_mean,
+                100.0 * without
+            );
+            leaks.push((label, with, without));
+        }
     }
+    leaks
+}
+
+fn assert_room_leaks(leaks: &[(String, f64, f64)]) {
+    bounds::assert_all(leaks.iter().flat_map(|(label, with, without)| {
+        [
+            ROOM_LEAK.check(format!("{label}: the room beyond the reference ÷ the lit mean"), *with),
+            ROOM_WITHOUT.check(format!("{label}: the same through the screen's depth alone"), *without),
+        ]
+    }));
 }
 
 #[test]
-fn the_lamp_worn_at_a_wall_lights_nothing_in_the_room_behind_it() {
+fn a_lamp_set_down_by_a_wall_lights_nothing_in_the_room_behind_it_seen_from_inside() {
     let gpu = Gpu::lavapipe().unwrap();
-    let level = engine::scene::load_level(&game::default_level()).unwrap();
-    // Standing in the corridor by the red/green room's wall, south of its doorway, looking
-    // down at the floor beside the wall: the lamp, worn, lights that floor and the wall's foot,
-    // and through the doorway (at the frame's right) the player sees into the room behind.
-    let look = Some((Vec3::new(0.8, 1.6, -5.4), Vec3::new(-0.6, 0.0, -5.4)));
-    let v = initial_view(&level, &ViewOverrides { look, fov_y: None });
-    let mut reference = WorldReference::new(&gpu, &level.scene).unwrap().with_visibility();
-    let receivers = reference.receivers(&gpu, &v, REFERENCE).unwrap();
-    let exact = reference.evaluate(&v, REFERENCE, &receivers, None, DEFAULT_MAX_EDGE).image;
-    let ([x0, x1], [z0, z1]) = RED_GREEN_ROOM;
-    let room: Vec<bool> = receivers
-        .iter()
-        .map(|r| r.normal != Vec3::ZERO && (x0..x1).contains(&r.position.x) && (z0..z1).contains(&r.position.z))
-        .collect();
-    let lum = |p: &image::Rgba<f32>| (p[0] + p[1] + p[2]) / 3.0;
-    let brightest = bounds::worst(exact.pixels().map(|p| f64::from(lum(p)))) as f32;
-    let lit: Vec<bool> = exact.pixels().map(|p| lum(p) > 1e-2 * brightest).collect();
-    let mean = |img: &image::Rgba32FImage, mask: &[bool]| {
-        let (sum, n) = img.pixels().zip(mask).filter(|(_, &m)| m).fold((0.0, 0), |(s, n), (p, _)| (s + lum(p), n + 1));
-        sum / n as f32
+    // In the Cellar's corridor by the red/green room's wall; the player inside that room.
+    let case = RoomBehind {
+        level: "cellar",
+        lamp: (Vec3::new(0.0, 2.6, -5.0), Vec3::new(-0.4, 0.0, -5.2)),
+        lit: (Vec3::new(1.0, 1.7, -1.5), Vec3::new(-0.4, 0.3, -5.2)),
+        room: RED_GREEN_ROOM,
+        views: &[
+            ("inside, facing away from the corridor", [-2.0, 1.6, -5.5], [-7.4, 2.0, -5.0]),
+            ("in the doorway, looking in", [-1.2, 1.6, -7.0], [-6.0, 1.0, -8.5]),
+        ],
     };
-    bounds::assert_all([
-        bounds::at_least(
-            "the room's pixels in view through the doorway",
-            room.iter().filter(|&&m| m).count() as f64,
-            301.0,
-        ),
-        bounds::at_least("lit pixels", lit.iter().filter(|&&m| m).count() as f64, 2001.0),
-    ]);
-    // Some light does reach the room, through the doorway from the corridor's floor: the leak
-    // is what the GI gives it beyond that, as a share of the lit surfaces' mean.
-    let (lit_mean, truth) = (mean(&exact, &lit), mean(&exact, &room));
-    for (settings, label) in [(GiSettings::default(), "defaults"), (GiSettings::cpu_preset(), "CPU settings")] {
-        let with = indirect(&gpu, &level.scene, &v, settings.clone());
-        let without = indirect(&gpu, &level.scene, &v, off(settings));
-        let leak = f64::from((mean(&with, &room) - truth) / lit_mean);
-        let old_leak = f64::from((mean(&without, &room) - truth) / lit_mean);
-        println!(
-            "{label}: the room behind the wall {:+.2} % of the lit mean beyond the reference's {:.2} % \
-             (without visibility {:+.2} %)",
-            100.0 * leak,
-            100.0 * truth / lit_mean,
-            100.0 * old_leak
-        );
-        // (Without visibility the leak here is small too: the room's surfaces nearest the lit
-        // floor, just behind the wall, are hidden from the camera by the doorway's jamb, so
-        // the set-down test above is the one that tells the two apart.)
-        WORN_LEAK.assert(format!("{label}: the room beyond the reference ÷ the lit mean"), leak);
-    }
+    let article = GiSettings { method: Method::Article, ..GiSettings::default() };
+    assert_room_leaks(&room_leaks(&gpu, &case, &[("cuts", GiSettings::default()), ("article", article)]));
+}
+
+#[test]
+fn in_the_gallery_and_the_hall_a_lamp_by_a_wall_lights_nothing_in_the_room_behind_it() {
+    let gpu = Gpu::lavapipe().unwrap();
+    let cases = [
+        // In the atrium by the red room's wall, south of its door; the player in the red room.
+        RoomBehind {
+            level: "gallery",
+            lamp: (Vec3::new(-3.5, 2.6, -9.5), Vec3::new(-4.8, 0.0, -9.7)),
+            lit: (Vec3::new(-1.0, 1.7, -8.0), Vec3::new(-4.6, 0.2, -9.6)),
+            room: ([-12.4, -5.4], [-10.4, -2.4]),
+            views: &[("the red room", [-6.2, 1.6, -9.8], [-12.0, 1.5, -9.0])],
+        },
+        // In the hall by the crypt's wall, east of its door; the player in the crypt.
+        RoomBehind {
+            level: "hall",
+            lamp: (Vec3::new(2.3, 2.6, -36.5), Vec3::new(2.3, 0.0, -37.8)),
+            lit: (Vec3::new(1.0, 1.7, -33.0), Vec3::new(2.3, 0.2, -37.7)),
+            room: ([-3.0, 3.0], [-44.4, -38.4]),
+            views: &[("the crypt", [1.5, 1.6, -39.2], [-2.5, 1.2, -44.0])],
+        },
+    ];
+    let [gallery, hall] = cases.map(|c| room_leaks(&gpu, &c, &[("cuts", GiSettings::default())]));
+    assert_room_leaks(&hall);
+    // The Gallery's rooms are larger and their ceilings higher: less of the floor's light
+    // reaches them through the wall.
+    bounds::assert_all(gallery.iter().flat_map(|(label, with, without)| {
+        [
+            ROOM_LEAK.check(format!("{label}: the room beyond the reference ÷ the lit mean"), *with),
+            GALLERY_WITHOUT.check(format!("{label}: the same through the screen's depth alone"), *without),
+        ]
+    }));
 }
 
 #[test]

@@ -79,7 +79,7 @@ impl Plugin for GiPlugin {
         add(ctx, h, cuts.with_visibility(), SightPass::new(device, globals, 1, core, gi.clone(), world.clone()));
         add(ctx, h, cuts, GatherPass::new(device, globals, 1, lanes, core, gi.clone()));
         // … or the article's light volumes, which make the same irradiance.
-        let article = ArticlePass::new(ctx.gpu, globals, core, gi.clone());
+        let article = ArticlePass::new(ctx.gpu, globals, core, gi.clone(), world.clone());
         add(ctx, h, When::method(Method::Article), article);
         let view_models = ViewModelIrradiancePass::new(device, globals, gi.clone(), core.view_model_irradiance);
         add(ctx, h, When::ENABLED, view_models);

@@ -23,10 +23,19 @@
 // Each receiver's position (as bits) and packed normal (NO_NORMAL: no surface), where its
 // sub-image holds it (article_sub_images.wgsl).
 @group(1) @binding(2) var receivers: texture_2d<u32>;
-// `fs_sight`'s: the view depth the march reads (sight_depth.wgsl).
+// `fs_sight`'s and `fs_world`'s: the view depth the march reads (sight_depth.wgsl).
 @group(2) @binding(0) var sight_depth: texture_2d<f32>;
+// `fs_world`'s: the level's surfaces as voxels (plugin_gi/src/world_grid.rs).
+@group(3) @binding(0) var<uniform> world: WorldGrid;
+@group(3) @binding(1) var<storage, read> world_bits: array<u32>;
+@group(3) @binding(2) var<storage, read> world_distances: array<u32>;
 
 #include "visibility.wgsl"
+#include "world_sight.wgsl"
+
+// A segment's ends leave their surfaces along their normals by this many voxels, and the
+// world march leaves out as many at each end (as the sight pass's, sight.wgsl).
+const WORLD_LIFT: f32 = 1.5;
 
 // An icosahedron: 12 vertices on the unit sphere's axes' golden rectangles, 20 faces, each
 // counter-clockwise seen from outside.
@@ -123,6 +132,7 @@ fn fade(distance: f32, radius: f32) -> f32 {
 struct Shaded {
     e: vec3f,
     x: vec3f,
+    normal: vec3f,
 };
 
 fn shade(in: VolumeOut) -> Shaded {
@@ -142,7 +152,7 @@ fn shade(in: VolumeOut) -> Shaded {
     let x = bitcast<vec3f>(r.xyz);
     let normal = unpack_normal(r.w);
     if light.radius < 0.0 {
-        return Shaded(disc_irradiance(light.flux, light.area, light.position, light.normal, x, normal), x);
+        return Shaded(disc_irradiance(light.flux, light.area, light.position, light.normal, x, normal), x, normal);
     }
     let w = fade(length(x - light.proxy_position), light.radius);
     if w <= 0.0 {
@@ -150,7 +160,7 @@ fn shade(in: VolumeOut) -> Shaded {
     }
     let own = disc_irradiance(light.flux, light.area, light.position, light.normal, x, normal);
     let share = disc_irradiance(light.flux, light.proxy_area, light.proxy_position, light.proxy_normal, x, normal);
-    return Shaded(w * (own - share), x);
+    return Shaded(w * (own - share), x, normal);
 }
 
 @fragment
@@ -166,4 +176,18 @@ fn fs_sight(in: VolumeOut) -> @location(0) vec4f {
     let s = shade(in);
     let seen = select(0.0, 1.0, clip_segment_seen(globals.view_proj * vec4f(s.x, 1.0), in.light_clip));
     return vec4f(s.e * seen, 0.0);
+}
+
+// … and where the screen cannot tell (`gi.world_sight`), stopped by the level's walls.
+@fragment
+fn fs_world(in: VolumeOut) -> @location(0) vec4f {
+    let s = shade(in);
+    let screen = clip_segment_sight(globals.view_proj * vec4f(s.x, 1.0), in.light_clip);
+    var seen = screen != SIGHT_BLOCKED;
+    if screen == SIGHT_UNKNOWN {
+        let lift = WORLD_LIFT * world.voxel;
+        let light = in.position_area.xyz + in.normal_radius.xyz * lift;
+        seen = world_segment_clear(s.x + s.normal * lift, light, lift);
+    }
+    return vec4f(s.e * select(0.0, 1.0, seen), 0.0);
 }

@@ -43,8 +43,9 @@ impl ArticlePass {
         globals: &wgpu::BindGroupLayout,
         core: CoreResources,
         gi: GiResources,
+        world: std::rc::Rc<crate::world_grid::WorldGrid>,
     ) -> Self {
-        Self { volumes: LightVolumes::new(&gpu.device, globals, gpu.float32_blendable()), core, gi }
+        Self { volumes: LightVolumes::new(&gpu.device, globals, gpu.float32_blendable(), world), core, gi }
     }
 }
 
@@ -94,6 +95,7 @@ impl GiPass for ArticlePass {
             stats: ctx.buffer(&io.stats),
             lights: ctx.buffer(&io.lights),
             sight_depth: io.sight_depth.as_ref().map(|h| ctx.view(h)),
+            world_sight: gi.world_sight(),
             indirect: gi.indirect,
             interleave: settings.article_interleave,
         };

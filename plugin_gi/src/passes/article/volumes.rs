@@ -6,6 +6,8 @@
 //! (article_volumes.wgsl), interleaved over N×N sub-images, which are split before and joined
 //! after (article_sub_images.wgsl). Three dispatches and one draw, whatever the number of lights.
 
+use std::rc::Rc;
+
 use engine::bindings::{Group, ShaderBinding as B, WgslGroup};
 use engine::headlamp::distribution_texels;
 use engine::scene::IntensityDistribution;
@@ -17,6 +19,17 @@ use crate::gpu_types::VOLUME_LIGHT_SIZE;
 use crate::pipelines::{compute_pipeline, TEXEL_GROUP};
 use crate::quadtree::Quadtree;
 use crate::shader::module;
+use crate::world_grid::{WorldGrid, WORLD};
+
+/// What stops a light volume's light (the volumes' pipelines, in this order).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Sight {
+    None,
+    /// The surfaces the camera sees.
+    Screen,
+    /// Those, and the level's walls where the screen cannot tell.
+    World,
+}
 
 pub const STREAM_SHADER: &str = include_str!("../../../../shaders/gi/article_stream.wgsl");
 pub const VOLUMES_SHADER: &str = include_str!("../../../../shaders/gi/article_volumes.wgsl");
@@ -79,7 +92,8 @@ pub const BINDINGS: &[WgslGroup] = &[
     WgslGroup::new("gi/article_sub_images.wgsl", 2, &SPLIT),
     WgslGroup::new("gi/article_sub_images.wgsl", 3, &JOIN),
     WgslGroup::new("gi/article_volumes.wgsl", 1, &VOLUMES),
-    WgslGroup::new("gi/article_volumes.wgsl", 2, &VOLUMES_SIGHT).for_entry_points(&["fs_sight"]),
+    WgslGroup::new("gi/article_volumes.wgsl", 2, &VOLUMES_SIGHT).for_entry_points(&["fs_sight", "fs_world"]),
+    WgslGroup::new("gi/article_volumes.wgsl", 3, &WORLD).for_entry_points(&["fs_world"]),
 ];
 
 /// What the table is made for: when any of it changes, it is made again.
@@ -131,6 +145,8 @@ pub struct VolumeTargets<'a> {
     pub irradiance: &'a wgpu::TextureView,
     /// With visibility: the view depth to march (`gi_sight_depth`'s); None without.
     pub sight_depth: Option<&'a wgpu::TextureView>,
+    /// With visibility: march what the screen cannot tell through the level's voxels too.
+    pub world_sight: bool,
     /// The gather's counters and the `lights` view's lights (the fine tier's).
     pub stats: &'a wgpu::Buffer,
     pub lights: &'a wgpu::Buffer,
@@ -149,8 +165,10 @@ pub struct LightVolumes {
     join_pipeline: wgpu::ComputePipeline,
     volumes_layout: wgpu::BindGroupLayout,
     sight_layout: wgpu::BindGroupLayout,
-    /// Without visibility (`fs_main`) and with it (`fs_sight`).
-    volumes_pipelines: [wgpu::RenderPipeline; 2],
+    world: Rc<WorldGrid>,
+    /// Without visibility (`fs_main`), through the screen (`fs_sight`), and through the level's
+    /// voxels too (`fs_world`), as [`Sight`] counts.
+    volumes_pipelines: [wgpu::RenderPipeline; 3],
     /// Rgba32Float where the device blends it, else Rgba16Float.
     shaded_format: wgpu::TextureFormat,
     /// The table in its GPU form, and what it was made for.
@@ -173,7 +191,12 @@ struct Scratch {
 }
 
 impl LightVolumes {
-    pub fn new(device: &wgpu::Device, globals: &wgpu::BindGroupLayout, float32_blendable: bool) -> Self {
+    pub fn new(
+        device: &wgpu::Device,
+        globals: &wgpu::BindGroupLayout,
+        float32_blendable: bool,
+        world: Rc<WorldGrid>,
+    ) -> Self {
         let stream_layout = STREAM.layout(device);
         let stream_module = module(device, "gi light stream", STREAM_SHADER);
         let stream_pipeline =
@@ -211,11 +234,13 @@ impl LightVolumes {
             write_mask: wgpu::ColorWrites::ALL,
         })];
         let volumes_module = module(device, "gi light volumes", VOLUMES_SHADER);
-        let volumes_pipelines = [false, true].map(|visibility| {
-            let (fragment, layouts) = if visibility {
-                ("fs_sight", &[Some(globals), Some(&volumes_layout), Some(&sight_layout)][..])
-            } else {
-                ("fs_main", &[Some(globals), Some(&volumes_layout)][..])
+        let volumes_pipelines = [Sight::None, Sight::Screen, Sight::World].map(|sight| {
+            let (fragment, layouts) = match sight {
+                Sight::None => ("fs_main", &[Some(globals), Some(&volumes_layout)][..]),
+                Sight::Screen => ("fs_sight", &[Some(globals), Some(&volumes_layout), Some(&sight_layout)][..]),
+                Sight::World => {
+                    ("fs_world", &[Some(globals), Some(&volumes_layout), Some(&sight_layout), Some(&world.layout)][..])
+                }
             };
             let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("gi light volumes"),
@@ -257,6 +282,7 @@ impl LightVolumes {
             join_pipeline,
             volumes_layout,
             sight_layout,
+            world,
             volumes_pipelines,
             shaded_format,
             table: None,
@@ -378,11 +404,19 @@ impl LightVolumes {
         let sight =
             t.sight_depth.map(|depth| VOLUMES_SIGHT.bind(device, &self.sight_layout, &[("sight_depth", depth.into())]));
         let mut pass = engine::passes::color_pass(encoder, "gi light volumes", &s.shaded, false);
-        pass.set_pipeline(&self.volumes_pipelines[usize::from(sight.is_some())]);
+        let kind = match (&sight, t.world_sight) {
+            (None, _) => Sight::None,
+            (Some(_), false) => Sight::Screen,
+            (Some(_), true) => Sight::World,
+        };
+        pass.set_pipeline(&self.volumes_pipelines[kind as usize]);
         pass.set_bind_group(0, globals, &[]);
         pass.set_bind_group(1, &volumes, &[]);
         if let Some(sight) = &sight {
             pass.set_bind_group(2, sight, &[]);
+        }
+        if kind == Sight::World {
+            pass.set_bind_group(3, &self.world.group, &[]);
         }
         pass.draw_indirect(&s.args, 0);
         drop(pass);
