@@ -51,7 +51,7 @@ fn changed() -> Config {
         light_budget: 2048,
         article_interleave: 2,
         volume_reach: 4.0,
-        world_sight: 1,
+        world_sight: 0,
     };
     Config {
         mouse_sensitivity: 1.37,
