@@ -97,6 +97,17 @@ fn visible_reference(gpu: &Gpu, scene: &Scene, view: &ViewState) -> image::Rgba3
     reference.render(gpu, view, REFERENCE, DEFAULT_MAX_EDGE).unwrap().image
 }
 
+/// A pixel's luminance, the mean of its channels.
+fn lum(p: &image::Rgba<f32>) -> f32 {
+    (p[0] + p[1] + p[2]) / 3.0
+}
+
+/// The mean luminance of `img`'s pixels where `mask` holds.
+fn mean(img: &image::Rgba32FImage, mask: &[bool]) -> f32 {
+    let (sum, n) = img.pixels().zip(mask).filter(|(_, &m)| m).fold((0.0, 0), |(s, n), (p, _)| (s + lum(p), n + 1));
+    sum / n as f32
+}
+
 fn off(settings: GiSettings) -> GiSettings {
     GiSettings { visibility: 0, ..settings }
 }
@@ -140,16 +151,11 @@ fn a_lamp_set_down_by_a_wall_lights_nothing_in_the_room_behind_it() {
     let mut v = initial_view(&level, &ViewOverrides { look: None, fov_y: None });
     v.headlamp.detach_looking_at(Vec3::new(0.0, 2.6, -5.0), Vec3::new(-0.4, 0.0, -5.2));
     let reference = visible_reference(&gpu, &level.scene, &v);
-    let lum = |p: &image::Rgba<f32>| (p[0] + p[1] + p[2]) / 3.0;
     let brightest = bounds::worst(reference.pixels().map(|p| f64::from(lum(p)))) as f32;
     // Lit: what the lamp's light reaches after one bounce; behind the wall: surfaces no lit
     // patch can see, however near (the reference gives them exactly nothing).
     let lit: Vec<bool> = reference.pixels().map(|p| lum(p) > 1e-2 * brightest).collect();
     let hidden: Vec<bool> = reference.pixels().map(|p| lum(p) == 0.0).collect();
-    let mean = |img: &image::Rgba32FImage, mask: &[bool]| {
-        let (sum, n) = img.pixels().zip(mask).filter(|(_, &m)| m).fold((0.0, 0), |(s, n), (p, _)| (s + lum(p), n + 1));
-        sum / n as f32
-    };
     bounds::assert_all([
         bounds::at_least("lit pixels", lit.iter().filter(|&&m| m).count() as f64, 51.0),
         bounds::at_least("pixels behind the wall", hidden.iter().filter(|&&m| m).count() as f64, 2001.0),
@@ -196,11 +202,6 @@ fn room_leaks(gpu: &Gpu, case: &RoomBehind, methods: &[(&str, GiSettings)]) -> V
         v
     };
     let mut reference = WorldReference::new(gpu, &level.scene).unwrap().with_visibility();
-    let lum = |p: &image::Rgba<f32>| (p[0] + p[1] + p[2]) / 3.0;
-    let mean = |img: &image::Rgba32FImage, mask: &[bool]| {
-        let (sum, n) = img.pixels().zip(mask).filter(|(_, &m)| m).fold((0.0, 0), |(s, n), (p, _)| (s + lum(p), n + 1));
-        sum / n as f32
-    };
     let lit_view = view(case.lit);
     let receivers = reference.receivers(gpu, &lit_view, REFERENCE).unwrap();
     let exact = reference.evaluate(&lit_view, REFERENCE, &receivers, None, DEFAULT_MAX_EDGE).image;
@@ -297,6 +298,55 @@ fn in_the_gallery_and_the_hall_a_lamp_by_a_wall_lights_nothing_in_the_room_behin
             GALLERY_WITHOUT.check(format!("{label}: the same through the screen's depth alone"), *without),
         ]
     }));
+}
+
+#[test]
+fn the_lamp_worn_at_a_wall_lights_nothing_in_the_room_behind_it() {
+    let gpu = Gpu::lavapipe().unwrap();
+    let level = engine::scene::load_level(&game::default_level()).unwrap();
+    // Standing in the corridor by the red/green room's wall, south of its doorway, looking
+    // down at the floor beside the wall: the lamp, worn, lights that floor and the wall's foot,
+    // and through the doorway (at the frame's right) the player sees into the room behind.
+    let look = Some((Vec3::new(0.8, 1.6, -5.4), Vec3::new(-0.6, 0.0, -5.4)));
+    let v = initial_view(&level, &ViewOverrides { look, fov_y: None });
+    let mut reference = WorldReference::new(&gpu, &level.scene).unwrap().with_visibility();
+    let receivers = reference.receivers(&gpu, &v, REFERENCE).unwrap();
+    let exact = reference.evaluate(&v, REFERENCE, &receivers, None, DEFAULT_MAX_EDGE).image;
+    let ([x0, x1], [z0, z1]) = RED_GREEN_ROOM;
+    let room: Vec<bool> = receivers
+        .iter()
+        .map(|r| r.normal != Vec3::ZERO && (x0..x1).contains(&r.position.x) && (z0..z1).contains(&r.position.z))
+        .collect();
+    let brightest = bounds::worst(exact.pixels().map(|p| f64::from(lum(p)))) as f32;
+    let lit: Vec<bool> = exact.pixels().map(|p| lum(p) > 1e-2 * brightest).collect();
+    bounds::assert_all([
+        bounds::at_least(
+            "the room's pixels in view through the doorway",
+            room.iter().filter(|&&m| m).count() as f64,
+            301.0,
+        ),
+        bounds::at_least("lit pixels", lit.iter().filter(|&&m| m).count() as f64, 2001.0),
+    ]);
+    // Some light does reach the room, through the doorway from the corridor's floor: the leak
+    // is what the GI gives it beyond that, as a share of the lit surfaces' mean.
+    let (lit_mean, truth) = (mean(&exact, &lit), mean(&exact, &room));
+    for (settings, label) in [(GiSettings::default(), "defaults"), (GiSettings::cpu_preset(), "CPU settings")] {
+        let with = indirect(&gpu, &level.scene, &v, settings.clone());
+        let without = indirect(&gpu, &level.scene, &v, off(settings));
+        let leak = f64::from((mean(&with, &room) - truth) / lit_mean);
+        let old_leak = f64::from((mean(&without, &room) - truth) / lit_mean);
+        println!(
+            "{label}: the room behind the wall {:+.2} % of the lit mean beyond the reference's {:.2} % \
+             (without visibility {:+.2} %)",
+            100.0 * leak,
+            100.0 * truth / lit_mean,
+            100.0 * old_leak
+        );
+        // (Without visibility the leak here is small too: the room's surfaces nearest the lit
+        // floor, just behind the wall, are hidden from the camera by the doorway's jamb, so
+        // the set-down test above is the one that tells the two apart.)
+        WORN_LEAK.assert(format!("{label}: the room beyond the reference ÷ the lit mean"), leak);
+    }
 }
 
 #[test]
