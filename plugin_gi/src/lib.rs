@@ -84,10 +84,10 @@ impl Plugin for GiPlugin {
         let view_models = ViewModelIrradiancePass::new(device, globals, gi.clone(), core.view_model_irradiance);
         add(ctx, h, When::ENABLED, view_models);
         // Further bounces: the camera's view lit by the bounce before, the same stages again.
-        for (k, bounce) in (2..=bounces).zip(&gi.bounces[1..]) {
-            if k == 2 {
-                add(ctx, h, When::bounce(2), GiParamsPass::further(bounce.params));
-            }
+        if bounces > 1 {
+            add(ctx, h, When::bounce(2), GiParamsPass::further(gi.bounce(2).params));
+        }
+        for k in 2..=bounces {
             add(ctx, h, When::bounce(k), PyramidPass::new(device, globals, k, core, gi.clone()));
             add(ctx, h, When::bounce(k), CutsPass::new(device, globals, k, core, gi.clone()));
             add(

@@ -116,11 +116,16 @@ impl GiResources {
 
     /// The first bounce's.
     pub fn first(&self) -> &BounceResources {
-        &self.bounces[0]
+        self.bounce(1)
+    }
+
+    /// The `k`th bounce's (k from 1).
+    pub fn bounce(&self, k: u32) -> &BounceResources {
+        &self.bounces[k as usize - 1]
     }
 
     /// The first bounce's parameters, which every pass but a further bounce's reads.
     pub fn params(&self) -> Handle<Buffer> {
-        self.bounces[0].params
+        self.first().params
     }
 }

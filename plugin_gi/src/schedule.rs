@@ -63,6 +63,16 @@ pub(crate) trait GiPass: 'static {
     fn run(&mut self, io: &Self::Io, frame: &GiFrame, ctx: &mut PassContext<'_>);
 }
 
+/// The name of stage `stage`'s pass for bounce `k`: `gi_STAGE` for the first, `gi_bounceK_STAGE`
+/// for a further one.
+pub(crate) fn bounce_pass_name(stage: &str, k: u32) -> String {
+    if k == 1 {
+        format!("gi_{stage}")
+    } else {
+        format!("gi_bounce{k}_{stage}")
+    }
+}
+
 /// A GI pass with its condition, as the render graph takes it.
 pub(crate) struct Scheduled<P> {
     pub pass: P,

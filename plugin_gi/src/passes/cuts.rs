@@ -14,7 +14,7 @@ use crate::frame::GiFrame;
 use crate::gpu_types::{CENTRE_LIGHTS, GATHER_STATS_SIZE, RETRY_HEADER};
 use crate::pipelines::compute_pipeline;
 use crate::resources::GiResources;
-use crate::schedule::GiPass;
+use crate::schedule::{bounce_pass_name, GiPass};
 use crate::shader::module;
 
 pub const SHADER: &str = include_str!("../../../shaders/gi/cuts.wgsl");
@@ -118,7 +118,7 @@ impl CutsPass {
         );
         let retry_pipeline =
             compute_pipeline(device, "gi cuts retry", &module, "retry_full_tiles", &[Some(globals), Some(&layout)]);
-        let name = if bounce == 1 { "gi_cuts".to_owned() } else { format!("gi_bounce{bounce}_cuts") };
+        let name = bounce_pass_name("cuts", bounce);
         Self { name, bounce, core, gi, layout, retry_args_layout, pipeline, retry_pipeline }
     }
 }
@@ -131,7 +131,7 @@ impl GiPass for CutsPass {
     }
 
     fn declare(&self, d: &mut PassDecl<'_>, frame: &GiFrame) -> CutsIo {
-        let own = &self.gi.bounces[self.bounce as usize - 1];
+        let own = self.gi.bounce(self.bounce);
         let (_, layout) = frame.of_bounce(self.bounce);
         CutsIo {
             params: d.read(own.params),

@@ -13,7 +13,7 @@ use crate::cuts_layout::CutsLayout;
 use crate::frame::GiFrame;
 use crate::pipelines::compute_pipeline_with;
 use crate::resources::GiResources;
-use crate::schedule::GiPass;
+use crate::schedule::{bounce_pass_name, GiPass};
 use crate::shader::module;
 
 pub const SUBGROUP_SHADER: &str = include_str!("../../../shaders/gi/gather_subgroup.wgsl");
@@ -124,7 +124,7 @@ impl GatherPass {
             let constants = [("VISIBILITY", f64::from(u8::from(visibility)))];
             compute_pipeline_with(device, "gi gather", &module, entry, &layouts, &constants)
         });
-        let name = if bounce == 1 { "gi_gather".to_owned() } else { format!("gi_bounce{bounce}_gather") };
+        let name = bounce_pass_name("gather", bounce);
         Self { name, bounce, core, gi, layout, bounce_layout, pipelines }
     }
 }
@@ -137,8 +137,8 @@ impl GiPass for GatherPass {
     }
 
     fn declare(&self, d: &mut PassDecl<'_>, frame: &GiFrame) -> GatherIo {
-        let k = self.bounce as usize;
-        let own = &self.gi.bounces[k - 1];
+        let k = self.bounce;
+        let own = self.gi.bounce(k);
         let size = frame.indirect;
         GatherIo {
             params: d.read(own.params),
@@ -149,7 +149,7 @@ impl GiPass for GatherPass {
             receivers: d.read(own.receivers),
             irradiance: d.create(own.irradiance, irradiance_texture(size)),
             bounce: (k > 1)
-                .then(|| (d.read(self.gi.bounces[k - 2].irradiance), d.create(own.alone, irradiance_texture(size)))),
+                .then(|| (d.read(self.gi.bounce(k - 1).irradiance), d.create(own.alone, irradiance_texture(size)))),
             layout: frame.of_bounce(self.bounce).1,
             visibility: frame.visibility(),
         }

@@ -15,7 +15,7 @@ use crate::gpu_types::{Levels, NODE_SIZE};
 use crate::pipelines::{compute_pipeline, compute_pipeline_with};
 use crate::quadtree::Quadtree;
 use crate::resources::GiResources;
-use crate::schedule::GiPass;
+use crate::schedule::{bounce_pass_name, GiPass};
 use crate::shader::module;
 
 pub const LAMP_SHADER: &str = include_str!("../../../shaders/gi/pyramid_lamp.wgsl");
@@ -132,7 +132,7 @@ impl PyramidPass {
             compute_pipeline_with(device, label, &module, "flux_levels", &layouts, &constants)
         });
         let reduce = compute_pipeline(device, "gi reduce", &module, "reduce", &[Some(globals), Some(&layout)]);
-        let name = if bounce == 1 { "gi_flux".to_owned() } else { format!("gi_bounce{bounce}_flux") };
+        let name = bounce_pass_name("flux", bounce);
         Self { name, bounce, core, gi, layout, source_layout, flux, reduce }
     }
 }
@@ -147,7 +147,7 @@ impl GiPass for PyramidPass {
     fn declare(&self, d: &mut PassDecl<'_>, frame: &GiFrame) -> PyramidIo {
         let first = self.bounce == 1;
         let (senders, _) = frame.of_bounce(self.bounce);
-        let own = &self.gi.bounces[self.bounce as usize - 1];
+        let own = self.gi.bounce(self.bounce);
         let view =
             if first { lamp_view(&self.core.gbuffer, &self.core.lamp, frame.attached) } else { self.core.gbuffer };
         let (size, blocks) = (senders.flux, senders.blocks());
@@ -158,7 +158,7 @@ impl GiPass for PyramidPass {
                     .create(self.gi.flux_view, flux_texture(wgpu::TextureFormat::Rgba16Float, senders.flux_view)),
             }
         } else {
-            let previous = self.gi.bounces[self.bounce as usize - 2].alone;
+            let previous = self.gi.bounce(self.bounce - 1).alone;
             Source::Bounce { levels: d.read(self.gi.levels), previous: d.read(previous) }
         };
         PyramidIo {

@@ -13,7 +13,7 @@ use crate::cuts_layout::CutsLayout;
 use crate::frame::GiFrame;
 use crate::pipelines::compute_pipeline_with;
 use crate::resources::GiResources;
-use crate::schedule::GiPass;
+use crate::schedule::{bounce_pass_name, GiPass};
 use crate::shader::module;
 use crate::world_grid::{WorldGrid, WORLD};
 
@@ -77,7 +77,7 @@ impl SightPass {
             let constants = [("WORLD", f64::from(u8::from(on)))];
             compute_pipeline_with(device, "gi sight", &module, "main", &layouts, &constants)
         });
-        let name = if bounce == 1 { "gi_sight".to_owned() } else { format!("gi_bounce{bounce}_sight") };
+        let name = bounce_pass_name("sight", bounce);
         Self { name, bounce, core, gi, layout, world, pipelines }
     }
 }
@@ -90,7 +90,7 @@ impl GiPass for SightPass {
     }
 
     fn declare(&self, d: &mut PassDecl<'_>, frame: &GiFrame) -> SightIo {
-        let own = &self.gi.bounces[self.bounce as usize - 1];
+        let own = self.gi.bounce(self.bounce);
         SightIo {
             params: d.read(own.params),
             levels: d.read(self.gi.levels),

@@ -130,7 +130,7 @@ impl GiPass for TemporalPass {
 
     fn declare(&self, d: &mut PassDecl<'_>, frame: &GiFrame) -> TemporalIo {
         // The total of every bounce computed.
-        let last = &self.gi.bounces[frame.bounces() as usize - 1];
+        let last = self.gi.bounce(frame.bounces());
         TemporalIo {
             params: d.read(self.gi.params()),
             temporal: d.create(self.gi.temporal, temporal_desc()),
