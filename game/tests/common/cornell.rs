@@ -58,3 +58,28 @@ pub fn tall_block_box() -> Scene {
     quad(&mut s, [v(x0, h, z1), v(x1, h, z1), v(x1, h, z0), v(x0, h, z0)], 0);
     s
 }
+
+/// Half the thickness of the wall between `two_rooms_with_a_thin_wall`'s rooms: 10 cm in all.
+pub const THIN_WALL_HALF: f32 = 0.05;
+
+/// Two closed rooms side by side, 4 m wide each (x ∈ [-4.05, -0.05] and [0.05, 4.05]), 6 m
+/// deep (z ∈ [-3, 3]), 2.5 m high, white, with one floor and one ceiling, between them a wall
+/// 10 cm thick from floor to ceiling and wall to wall: nothing of one room sees the other.
+pub fn two_rooms_with_a_thin_wall() -> Scene {
+    let material = Material { base_color: [0.75, 0.75, 0.75, 1.0], ..Material::default() };
+    let mut s = Scene { materials: vec![material], ..Scene::default() };
+    let v = Vec3::new;
+    let (w, x, z, h) = (THIN_WALL_HALF, 4.0 + THIN_WALL_HALF, 3.0, 2.5);
+    // Floor and ceiling, facing in.
+    quad(&mut s, [v(-x, 0.0, z), v(x, 0.0, z), v(x, 0.0, -z), v(-x, 0.0, -z)], 0);
+    quad(&mut s, [v(-x, h, -z), v(x, h, -z), v(x, h, z), v(-x, h, z)], 0);
+    // The outer walls, facing in: back, front, left, right.
+    quad(&mut s, [v(-x, 0.0, -z), v(x, 0.0, -z), v(x, h, -z), v(-x, h, -z)], 0);
+    quad(&mut s, [v(x, 0.0, z), v(-x, 0.0, z), v(-x, h, z), v(x, h, z)], 0);
+    quad(&mut s, [v(-x, 0.0, z), v(-x, 0.0, -z), v(-x, h, -z), v(-x, h, z)], 0);
+    quad(&mut s, [v(x, 0.0, -z), v(x, 0.0, z), v(x, h, z), v(x, h, -z)], 0);
+    // The thin wall's two faces, each facing its room.
+    quad(&mut s, [v(-w, 0.0, -z), v(-w, 0.0, z), v(-w, h, z), v(-w, h, -z)], 0);
+    quad(&mut s, [v(w, 0.0, z), v(w, 0.0, -z), v(w, h, -z), v(w, h, z)], 0);
+    s
+}
