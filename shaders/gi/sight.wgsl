@@ -35,9 +35,7 @@ override WORLD: bool = false;
 // march leaves out as many at each end: the voxels of the surfaces they lie on.
 const WORLD_LIFT: f32 = 1.5;
 
-// The points in the order they are asked (point i = x + 3y, bit i of `points_seeing`): the
-// corners, then the points between them.
-const ORDER = array<u32, 9>(0u, 2u, 6u, 8u, 1u, 3u, 4u, 5u, 7u);
+// Point i = x + 3y, bit i of `points_seeing`: the corners, and the points between them.
 const CORNERS: u32 = 0x145u;
 const BETWEEN: u32 = 0x0bau;
 
@@ -62,31 +60,56 @@ fn point_sees(i: u32, light: vec4f, lifted: vec3f) -> vec2u {
     return vec2u(u32(seen), 1u) << vec2u(i);
 }
 
-// Which of the points see the light at p (bit i for point i): the corners first, the others
-// only where the corners disagree (where they agree, a surface between would be narrower
-// than the tile: the others take their answer). A point without a surface sees it where
-// another point does (or where none has a surface). (One loop, whose length is known only
-// once the corners have answered, so that a CPU device's compiler makes one copy of the
-// marches, not one for each point.)
+// The points between two corners (bits of point 1, 3, 5 and 7), each with its corners.
+const EDGES = array<vec3u, 4>(vec3u(1u, 0u, 2u), vec3u(3u, 0u, 6u), vec3u(5u, 2u, 8u), vec3u(7u, 6u, 8u));
+const CENTRE: u32 = 4u;
+
+// Which of the points see the light at p (bit i for point i): the corners first. Where they
+// agree, a surface between would be narrower than the tile: the others take their answer.
+// Where they disagree, the centre is asked, and each point between two corners that do not
+// agree (or do not both have a surface); the others take their corners' answer. A point
+// without a surface sees it where another point does (or where none has a surface). (One
+// loop, whose length is known only once the corners have answered, so that a CPU device's
+// compiler makes one copy of the marches, not one for each point.)
 fn points_seeing(l: CutLight) -> u32 {
     let light = globals.view_proj * vec4f(l.position, 1.0);
     let lifted = l.position + l.normal * (WORLD_LIFT * world.voxel);
     var answer = vec2u(0u);
-    var asked = 4u;
-    for (var k = 0u; k < asked; k++) {
-        answer |= point_sees(ORDER[k], light, lifted);
-        let corners = answer.x & answer.y & CORNERS;
-        if k == 3u && corners != 0u && corners != (answer.y & CORNERS) {
-            asked = 9u;
+    var pending = CORNERS;
+    var corners_asked = false;
+    loop {
+        if pending == 0u {
+            if corners_asked {
+                break;
+            }
+            corners_asked = true;
+            let valid = answer.y & CORNERS;
+            let seen = answer.x & valid;
+            if seen == 0u || seen == valid {
+                // They agree: the points between take their answer.
+                answer.y |= BETWEEN;
+                answer.x |= select(0u, BETWEEN, seen != 0u);
+                break;
+            }
+            pending = 1u << CENTRE;
+            for (var e = 0u; e < 4u; e++) {
+                let edge = EDGES[e];
+                let ends = (1u << edge.y) | (1u << edge.z);
+                let agree = (valid & ends) == ends && ((seen & ends) == 0u || (seen & ends) == ends);
+                if agree {
+                    answer.y |= 1u << edge.x;
+                    answer.x |= select(0u, 1u << edge.x, (seen & ends) != 0u);
+                } else {
+                    pending |= 1u << edge.x;
+                }
+            }
         }
+        let p = firstTrailingBit(pending);
+        pending &= pending - 1u;
+        answer |= point_sees(p, light, lifted);
     }
-    var seen = answer.x;
-    var valid = answer.y;
-    if asked == 4u {
-        let corners = seen & valid & CORNERS;
-        valid |= BETWEEN;
-        seen |= select(0u, BETWEEN, corners != 0u);
-    }
+    let seen = answer.x;
+    let valid = answer.y;
     let others = select(0u, 511u, seen != 0u || valid == 0u);
     return seen | (others & ~valid & 511u);
 }
