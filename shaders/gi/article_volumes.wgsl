@@ -183,11 +183,11 @@ fn fs_sight(in: VolumeOut) -> @location(0) vec4f {
 fn fs_world(in: VolumeOut) -> @location(0) vec4f {
     let s = shade(in);
     let screen = clip_segment_sight(globals.view_proj * vec4f(s.x, 1.0), in.light_clip);
-    var seen = screen != SIGHT_BLOCKED;
-    if screen == SIGHT_UNKNOWN {
+    var seen = screen.sight != SIGHT_BLOCKED;
+    if screen.sight == SIGHT_UNKNOWN {
         let lift = WORLD_LIFT * world.voxel;
         let light = in.position_area.xyz + in.normal_radius.xyz * lift;
-        seen = world_segment_clear(s.x + s.normal * lift, light, lift);
+        seen = world_segment_clear(s.x + s.normal * lift, light, lift, screen.unknown);
     }
     return vec4f(s.e * select(0.0, 1.0, seen), 0.0);
 }

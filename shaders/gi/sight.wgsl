@@ -53,9 +53,9 @@ fn point_sees(i: u32, light: vec4f, lifted: vec3f) -> vec2u {
     }
     // Where the screen cannot tell, the level's voxels do.
     let screen = clip_segment_sight(c, light);
-    var seen = screen != SIGHT_BLOCKED;
-    if WORLD && screen == SIGHT_UNKNOWN {
-        seen = world_segment_clear(world_points[i], lifted, WORLD_LIFT * world.voxel);
+    var seen = screen.sight != SIGHT_BLOCKED;
+    if WORLD && screen.sight == SIGHT_UNKNOWN {
+        seen = world_segment_clear(world_points[i], lifted, WORLD_LIFT * world.voxel, screen.unknown);
     }
     return vec2u(u32(seen), 1u) << vec2u(i);
 }

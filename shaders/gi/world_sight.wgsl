@@ -49,11 +49,11 @@ fn world_box_exit(a: vec3f, d: vec3f, lo: vec3f, hi: vec3f) -> f32 {
     return min(t.x, min(t.y, t.z));
 }
 
-// Whether the segment from a to b (world space, metres) crosses no surface, leaving out the
-// first and last `skip` metres (the surfaces its ends lie on). (It returns at its end only:
-// lavapipe's compiler fails on a return from within this function as the sight pass inlines
-// it.)
-fn world_segment_clear(a_world: vec3f, b_world: vec3f, skip_world: f32) -> bool {
+// Whether the part `span` (fractions of the way from a to b) of the segment from a to b
+// (world space, metres) crosses no surface, leaving out the first and last `skip` metres of
+// the whole (the surfaces its ends lie on). (It returns at its end only: lavapipe's compiler
+// fails on a return from within this function as the sight pass inlines it.)
+fn world_segment_clear(a_world: vec3f, b_world: vec3f, skip_world: f32, span: vec2f) -> bool {
     let a = (a_world - world.origin) / world.voxel;
     let d = (b_world - world.origin) / world.voxel - a;
     let length = length(d);
@@ -67,8 +67,8 @@ fn world_segment_clear(a_world: vec3f, b_world: vec3f, skip_world: f32) -> bool 
     let t1 = (size - a) / safe;
     let enter = select(min(t0, t1), vec3f(-3.4e38), still);
     let leave = select(max(t0, t1), vec3f(3.4e38), still);
-    var t = max(skip / length, max(enter.x, max(enter.y, enter.z)));
-    var end = min(1.0 - skip / length, min(leave.x, min(leave.y, leave.z)));
+    var t = max(max(skip / length, span.x), max(enter.x, max(enter.y, enter.z)));
+    var end = min(min(1.0 - skip / length, span.y), min(leave.x, min(leave.y, leave.z)));
     if length <= 2.0 * skip || any(still & ((a < vec3f(0.0)) | (a >= size))) {
         end = t;
     }
