@@ -215,6 +215,7 @@ pub const GPU_ONLY: &[(&str, &str)] = &[
     ("Lanes", "a function's value, never in a buffer"),
     ("Gathered", "a function's value, never in a buffer"),
     ("Shaded", "a function's value, never in a buffer"),
+    ("ScreenSight", "a function's value, never in a buffer"),
     ("DotOut", "stage IO between vertex and fragment shaders"),
 ];
 
