@@ -2,14 +2,15 @@
 //! and in the Cellar by the article's method too) comes within 8 % (4×4 blocks) and 5 % of
 //! energy of the visibility-correct world-fixed reference
 //! (`reference_vis`, CPU, every sender–receiver pair tested against the level's triangles),
-//! where the GI without it is far off, in a box with a tall block and in three Cellar views;
+//! where the GI without it is far off, in a box with a tall block, in one with a short and a
+//! tall block, and in three Cellar views;
 //! and a lamp set down by a wall (down to 10 cm thick), or worn by a player standing at it,
 //! lights nothing measurable in the room behind it, from inside, from its doorway and on a slow
 //! pan from the corridor into it.
 
 mod common;
 
-use common::cornell::{tall_block_box, two_rooms_with_a_thin_wall, view, THIN_WALL_HALF};
+use common::cornell::{tall_block_box, two_block_box, two_rooms_with_a_thin_wall, view, THIN_WALL_HALF};
 use common::settled::settled_indirect;
 use engine::frame::ViewState;
 use engine::glam::Vec3;
@@ -28,19 +29,20 @@ const FRAME: (u32, u32) = (640, 360);
 const REFERENCE: (u32, u32) = (160, 90);
 
 bounds::tolerance! {
-    /// The box with a tall block, face-on and into a corner, defaults and CPU settings: against
-    /// `reference_vis`, 4×4 block error (the goal: 8 %).
-    BOX_ERROR: at_most 0.08, measured 0.0674
+    /// The box with a tall block, face-on and into a corner, and the box with both blocks
+    /// face-on, defaults and CPU settings: against `reference_vis`, 4×4 block error (the goal
+    /// is 6 %, not yet met; this holds what is reached).
+    BOX_ERROR: at_most 0.08, measured 0.0741
 }
 bounds::tolerance! {
-    /// The box with a tall block, face-on and into a corner, defaults and CPU settings: against
-    /// `reference_vis`, energy (the goal: 5 %).
+    /// The box with a tall block, face-on and into a corner, and the box with both blocks
+    /// face-on, defaults and CPU settings: against `reference_vis`, energy (the goal: 5 %).
     BOX_ENERGY: magnitude 0.05, measured 0.0315
 }
 bounds::tolerance! {
-    /// The box with a tall block without visibility: how much further from `reference_vis` (block error, points):
-    /// the block hides enough to tell the two apart.
-    BOX_WITHOUT: at_least 0.04, measured 0.0798
+    /// The boxes without visibility: how much further from `reference_vis` (block error,
+    /// points): the blocks hide enough to tell the two apart.
+    BOX_WITHOUT: at_least 0.04, measured 0.0800
 }
 bounds::tolerance! {
     /// The lamp set down by the spawn room's wall: the room behind it, ÷ the lit mean (the goal:
@@ -112,18 +114,20 @@ fn off(settings: GiSettings) -> GiSettings {
 }
 
 #[test]
-fn in_a_box_with_a_tall_block_the_gi_sees_what_the_visible_reference_sees() {
+fn in_a_box_with_a_tall_block_and_with_two_blocks_the_gi_sees_what_the_visible_reference_sees() {
     let gpu = Gpu::lavapipe().unwrap();
-    let scene = tall_block_box();
+    let face_on = view(Vec3::new(0.0, 1.0, 3.4), Vec3::new(0.0, 1.0, 0.0));
+    let (tall, both) = (tall_block_box(), two_block_box());
     let views = [
-        ("face-on", view(Vec3::new(0.0, 1.0, 3.4), Vec3::new(0.0, 1.0, 0.0))),
-        ("into a corner", view(Vec3::new(0.5, 1.4, 2.4), Vec3::new(-0.9, 0.4, -0.9))),
+        ("face-on", &tall, face_on.clone()),
+        ("into a corner", &tall, view(Vec3::new(0.5, 1.4, 2.4), Vec3::new(-0.9, 0.4, -0.9))),
+        ("two blocks, face-on", &both, face_on),
     ];
-    for (name, v) in views {
-        let reference = visible_reference(&gpu, &scene, &v);
+    for (name, scene, v) in views {
+        let reference = visible_reference(&gpu, scene, &v);
         for (settings, label) in [(GiSettings::default(), "defaults"), (GiSettings::cpu_preset(), "CPU settings")] {
-            let with = indirect(&gpu, &scene, &v, settings.clone());
-            let without = indirect(&gpu, &scene, &v, off(settings));
+            let with = indirect(&gpu, scene, &v, settings.clone());
+            let without = indirect(&gpu, scene, &v, off(settings));
             let (error, gain) = (block_error_sized(&with, &reference, 4), energy(&with, &reference));
             let (leaky, leaky_gain) = (block_error_sized(&without, &reference, 4), energy(&without, &reference));
             // The block hides enough that the GI without visibility misses by far, with more light.

@@ -59,6 +59,14 @@ pub fn tall_block_box() -> Scene {
     s
 }
 
+/// The Cornell-like box with both blocks, its low one and `tall_block_box`'s tall one beside it:
+/// the classic two-block scene, each block hiding parts of the other and of the walls.
+pub fn two_block_box() -> Scene {
+    let mut s = cornell_box();
+    s.meshes.extend(tall_block_box().meshes.split_off(5));
+    s
+}
+
 /// Half the thickness of the wall between `two_rooms_with_a_thin_wall`'s rooms: 10 cm in all.
 pub const THIN_WALL_HALF: f32 = 0.05;
 
