@@ -179,6 +179,27 @@ fn a_lamp_set_down_by_a_wall_lights_nothing_in_the_room_behind_it() {
 
 /// The red/green room's floor plan (levels/generator/src/cellar.rs): x and z, metres.
 const RED_GREEN_ROOM: ([f32; 2], [f32; 2]) = ([-7.4, -1.4], [-10.0, -4.0]);
+/// The lamp set down in the Cellar's corridor by the red/green room's wall (where it stands,
+/// what it points at), and a view of the floor it lights from the corridor.
+const CELLAR_LAMP: (Vec3, Vec3) = (Vec3::new(0.0, 2.6, -5.0), Vec3::new(-0.4, 0.0, -5.2));
+const CELLAR_LIT: (Vec3, Vec3) = (Vec3::new(1.0, 1.7, -1.5), Vec3::new(-0.4, 0.3, -5.2));
+
+/// Whether receiver r lies on a surface inside `room` (x and z, metres).
+fn in_room(([x0, x1], [z0, z1]): ([f32; 2], [f32; 2]), r: &gi_reference::Receiver) -> bool {
+    r.normal != Vec3::ZERO && (x0..x1).contains(&r.position.x) && (z0..z1).contains(&r.position.z)
+}
+
+/// The mean of `reference`'s light over the surfaces it lights in `view` (above 1 % of its
+/// brightest), what a leak is counted against; at least 2001 of them (`label` says where).
+fn lit_mean(gpu: &Gpu, reference: &mut WorldReference, view: &ViewState, label: &str) -> f32 {
+    let receivers = reference.receivers(gpu, view, REFERENCE).unwrap();
+    let exact = reference.evaluate(view, REFERENCE, &receivers, None, DEFAULT_MAX_EDGE).image;
+    let brightest = bounds::worst(exact.pixels().map(|p| f64::from(lum(p)))) as f32;
+    let lit: Vec<bool> = exact.pixels().map(|p| lum(p) > 1e-2 * brightest).collect();
+    let lit_pixels = lit.iter().filter(|&&m| m).count() as f64;
+    bounds::assert(bounds::at_least(format!("{label}: lit pixels"), lit_pixels, 2001.0));
+    mean(&exact, &lit)
+}
 
 /// A lamp set down by a wall, and views of the room behind it where the camera sees neither
 /// the lit floor nor the wall.
@@ -219,24 +240,13 @@ fn leaks_behind(
         v
     };
     let mut reference = WorldReference::new(gpu, scene).unwrap().with_visibility();
-    let lit_view = view(case.lit);
-    let receivers = reference.receivers(gpu, &lit_view, REFERENCE).unwrap();
-    let exact = reference.evaluate(&lit_view, REFERENCE, &receivers, None, DEFAULT_MAX_EDGE).image;
-    let brightest = bounds::worst(exact.pixels().map(|p| f64::from(lum(p)))) as f32;
-    let lit: Vec<bool> = exact.pixels().map(|p| lum(p) > 1e-2 * brightest).collect();
-    let lit_pixels = lit.iter().filter(|&&m| m).count() as f64;
-    bounds::assert(bounds::at_least(format!("{}: lit pixels", case.level), lit_pixels, 2001.0));
-    let lit_mean = mean(&exact, &lit);
-    let ([x0, x1], [z0, z1]) = case.room;
+    let lit_mean = lit_mean(gpu, &mut reference, &view(case.lit), case.level);
     let mut leaks = Vec::new();
     for &(name, eye, target) in case.views {
         let v = view((Vec3::from(eye), Vec3::from(target)));
         let receivers = reference.receivers(gpu, &v, REFERENCE).unwrap();
         let exact = reference.evaluate(&v, REFERENCE, &receivers, None, DEFAULT_MAX_EDGE).image;
-        let room: Vec<bool> = receivers
-            .iter()
-            .map(|r| r.normal != Vec3::ZERO && (x0..x1).contains(&r.position.x) && (z0..z1).contains(&r.position.z))
-            .collect();
+        let room: Vec<bool> = receivers.iter().map(|r| in_room(case.room, r)).collect();
         let pixels = room.iter().filter(|&&m| m).count() as f64;
         bounds::assert(bounds::at_least(format!("{}, {name}: the room's pixels", case.level), pixels, 3001.0));
         let truth = mean(&exact, &room);
@@ -272,8 +282,8 @@ fn a_lamp_set_down_by_a_wall_lights_nothing_in_the_room_behind_it_seen_from_insi
     // In the Cellar's corridor by the red/green room's wall; the player inside that room.
     let case = RoomBehind {
         level: "cellar",
-        lamp: (Vec3::new(0.0, 2.6, -5.0), Vec3::new(-0.4, 0.0, -5.2)),
-        lit: (Vec3::new(1.0, 1.7, -1.5), Vec3::new(-0.4, 0.3, -5.2)),
+        lamp: CELLAR_LAMP,
+        lit: CELLAR_LIT,
         room: RED_GREEN_ROOM,
         views: &[
             ("inside, facing away from the corridor", [-2.0, 1.6, -5.5], [-7.4, 2.0, -5.0]),
@@ -289,7 +299,7 @@ fn on_a_slow_pan_from_the_corridor_into_the_room_the_lamp_by_its_wall_lights_not
     let gpu = Gpu::lavapipe().unwrap();
     let level = engine::scene::load_level(&game::default_level()).unwrap();
     let scene = &level.scene;
-    let (lamp, lamp_target) = (Vec3::new(0.0, 2.6, -5.0), Vec3::new(-0.4, 0.0, -5.2));
+    let (lamp, lamp_target) = CELLAR_LAMP;
     // Standing in the red/green room's doorway, from the corridor's lit floor (south-east) round
     // through south into the room (west), PAN_STEP a frame, the GI's history carried along:
     // the wall and the lit floor leave the screen while the room comes into it.
@@ -313,57 +323,41 @@ fn on_a_slow_pan_from_the_corridor_into_the_room_the_lamp_by_its_wall_lights_not
         .collect();
     // The lit mean a leak is counted against, as in the views from inside.
     let mut reference = WorldReference::new(&gpu, scene).unwrap().with_visibility();
-    let mut lit_view = initial_view(
-        &level,
-        &ViewOverrides { look: Some((Vec3::new(1.0, 1.7, -1.5), Vec3::new(-0.4, 0.3, -5.2))), fov_y: None },
-    );
+    let mut lit_view = initial_view(&level, &ViewOverrides { look: Some(CELLAR_LIT), fov_y: None });
     lit_view.headlamp.detach_looking_at(lamp, lamp_target);
-    let receivers = reference.receivers(&gpu, &lit_view, REFERENCE).unwrap();
-    let exact = reference.evaluate(&lit_view, REFERENCE, &receivers, None, DEFAULT_MAX_EDGE).image;
-    let brightest = bounds::worst(exact.pixels().map(|p| f64::from(lum(p)))) as f32;
-    let lit: Vec<bool> = exact.pixels().map(|p| lum(p) > 1e-2 * brightest).collect();
-    let lit_mean = mean(&exact, &lit);
+    let lit_mean = lit_mean(&gpu, &mut reference, &lit_view, "cellar");
     // The frames checked: every PAN_CHECK-th, once the room fills a fifth of the view; in each,
     // the room's pixels on every other 4×4 block across and down (a quarter of the
     // reference's cost).
     const PAN_CHECK: usize = 12;
-    let ([x0, x1], [z0, z1]) = RED_GREEN_ROOM;
     let blocks = block_mask(REFERENCE.0, REFERENCE.1, 4, 2);
     let mut checks = Vec::new();
     for k in (0..=frames).step_by(PAN_CHECK) {
         let receivers = reference.receivers(&gpu, &views[k], REFERENCE).unwrap();
-        let in_room = |r: &gi_reference::Receiver| {
-            r.normal != Vec3::ZERO && (x0..x1).contains(&r.position.x) && (z0..z1).contains(&r.position.z)
-        };
-        let room: Vec<bool> = receivers.iter().zip(&blocks).map(|(r, &b)| b && in_room(r)).collect();
-        if receivers.iter().filter(|r| in_room(r)).count() * 5 >= receivers.len() {
+        let room: Vec<bool> = receivers.iter().zip(&blocks).map(|(r, &b)| b && in_room(RED_GREEN_ROOM, r)).collect();
+        if receivers.iter().filter(|r| in_room(RED_GREEN_ROOM, r)).count() * 5 >= receivers.len() {
             let truth = reference.evaluate(&views[k], REFERENCE, &receivers, Some(&room), DEFAULT_MAX_EDGE).image;
             let truth = mean(&truth, &room);
             checks.push((k, room, truth));
         }
     }
     bounds::assert(bounds::at_least("frames checked with the room in view", checks.len() as f64, 3.0));
-    let mut leaks = Vec::new();
-    for (method, settings) in [("cuts", GiSettings::default())] {
-        let screen = GiSettings { world_sight: 0, ..settings.clone() };
-        let [with, without] = [settings, screen].map(|s| {
-            let pan = pan_indirect(&gpu, scene, &views, s);
-            checks
-                .iter()
-                .map(|(k, room, truth)| f64::from((mean(&pan[*k], room) - truth) / lit_mean))
-                .collect::<Vec<_>>()
-        });
-        for ((k, _, _), (w, o)) in checks.iter().zip(with.iter().zip(&without)) {
-            println!(
-                "pan, {method}, frame {k} ({:.0}°): the room {:+.2} % of the lit mean beyond the reference (screen sight alone {:+.2} %)",
-                *k as f32 * turn.to_degrees() / frames as f32,
-                100.0 * w,
-                100.0 * o
-            );
-        }
-        let worst = |v: &[f64]| bounds::worst(v.iter().copied());
-        leaks.push((format!("the pan into the room, {method}, its worst frame"), worst(&with), worst(&without)));
+    // The cuts at the defaults, with the world sight and through the screen alone.
+    let screen = GiSettings { world_sight: 0, ..GiSettings::default() };
+    let [with, without] = [GiSettings::default(), screen].map(|s| {
+        let pan = pan_indirect(&gpu, scene, &views, s);
+        checks.iter().map(|(k, room, truth)| f64::from((mean(&pan[*k], room) - truth) / lit_mean)).collect::<Vec<_>>()
+    });
+    for ((k, _, _), (w, o)) in checks.iter().zip(with.iter().zip(&without)) {
+        println!(
+            "pan, frame {k} ({:.0}°): the room {:+.2} % of the lit mean beyond the reference (screen sight alone {:+.2} %)",
+            *k as f32 * turn.to_degrees() / frames as f32,
+            100.0 * w,
+            100.0 * o
+        );
     }
+    let worst = |v: &[f64]| bounds::worst(v.iter().copied());
+    let leaks = [("the pan into the room, cuts, its worst frame".to_string(), worst(&with), worst(&without))];
     assert_room_leaks(&leaks);
 }
 
@@ -443,11 +437,7 @@ fn the_lamp_worn_at_a_wall_lights_nothing_in_the_room_behind_it() {
     let mut reference = WorldReference::new(&gpu, &level.scene).unwrap().with_visibility();
     let receivers = reference.receivers(&gpu, &v, REFERENCE).unwrap();
     let exact = reference.evaluate(&v, REFERENCE, &receivers, None, DEFAULT_MAX_EDGE).image;
-    let ([x0, x1], [z0, z1]) = RED_GREEN_ROOM;
-    let room: Vec<bool> = receivers
-        .iter()
-        .map(|r| r.normal != Vec3::ZERO && (x0..x1).contains(&r.position.x) && (z0..z1).contains(&r.position.z))
-        .collect();
+    let room: Vec<bool> = receivers.iter().map(|r| in_room(RED_GREEN_ROOM, r)).collect();
     let brightest = bounds::worst(exact.pixels().map(|p| f64::from(lum(p)))) as f32;
     let lit: Vec<bool> = exact.pixels().map(|p| lum(p) > 1e-2 * brightest).collect();
     bounds::assert_all([
